@@ -1,0 +1,9 @@
+// The subcommands of `revdist`; each file cmd_NAME.cpp adds one to the app.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace revdist::cli {
+
+void add_circles_command(CLI::App& app);
+
+}  // namespace revdist::cli

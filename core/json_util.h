@@ -1,0 +1,35 @@
+// Typed reads from parsed JSON whose errors name the file and the item
+// ("cases/x.json: pairs[3].a.radius: expected a finite number, got \"1\"").
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/vec.h"
+
+namespace revdist {
+
+using Json = nlohmann::json;
+
+// Reads and parses a whole JSON file; InputError if it cannot be opened or is not JSON.
+Json read_json_file(const std::string& path);
+
+// Context for error messages: the file and a path inside it.
+struct JsonWhere {
+  std::string file;
+  std::string item;  // e.g. "pairs[3].a"
+  JsonWhere operator/(const std::string& key) const;  // item + "." + key
+  JsonWhere operator[](std::size_t index) const;      // item + "[i]"
+  [[noreturn]] void fail(const std::string& problem) const;
+};
+
+// A finite number (NaN and infinity are rejected, as is any non-number).
+double read_number(const Json& j, const JsonWhere& where);
+// An array of exactly two / three finite numbers.
+Vec2 read_vec2(const Json& j, const JsonWhere& where);
+Vec3 read_vec3(const Json& j, const JsonWhere& where);
+// A member that must be present in object j.
+const Json& require(const Json& j, const std::string& key, const JsonWhere& where);
+// The object j must have a string member "format" equal to expected.
+void require_format(const Json& j, const std::string& expected, const JsonWhere& where);
+
+}  // namespace revdist
