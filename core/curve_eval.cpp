@@ -1,0 +1,182 @@
+// Points and derivatives of profile pieces (lines, arcs, rational Bezier and
+// NURBS pieces), the evaluation layer under the spiral split of paper section 4.1.
+#include "core/curve_eval.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace revdist {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+using Hom = Eigen::Vector3d;  // (w r, w z, w)
+
+// The p + 1 control points and 2p knots that define one non-empty knot span of
+// a spline of degree p: the span is [tau[p-1], tau[p]). Bezier pieces are one
+// span with knots 0 (p times) and 1 (p times). Differentiating a window gives
+// the window of the derivative spline over the same span (degree p - 1), so
+// every derivative is evaluated by the same de Boor loop.
+struct Window {
+  int degree = 0;
+  std::vector<Hom> c;
+  std::vector<double> tau;
+};
+
+Hom de_boor(const Window& w, double u, std::vector<Hom>& scratch) {
+  const int p = w.degree;
+  scratch.assign(w.c.begin(), w.c.end());
+  for (int r = 1; r <= p; ++r) {
+    for (int j = p; j >= r; --j) {
+      const double lo = w.tau[j - 1], hi = w.tau[j + p - r];
+      // hi > lo inside a non-empty span: lo <= tau[p-1] < tau[p] <= hi.
+      const double a = (u - lo) / (hi - lo);
+      scratch[j] = (1.0 - a) * scratch[j - 1] + a * scratch[j];
+    }
+  }
+  return scratch[p];
+}
+
+// Replaces the window by that of its derivative.
+void differentiate(Window& w) {
+  const int p = w.degree;
+  for (int j = 0; j < p; ++j) {
+    const double dt = w.tau[j + p] - w.tau[j];  // > 0 for the same reason as in de_boor
+    w.c[j] = (p / dt) * (w.c[j + 1] - w.c[j]);
+  }
+  w.c.pop_back();
+  if (p >= 1) {
+    w.tau.erase(w.tau.begin());
+    w.tau.pop_back();
+  }
+  w.degree = p - 1;
+}
+
+double weight(const Piece& piece, std::size_t i) {
+  return piece.weights.empty() ? 1.0 : piece.weights[i];
+}
+
+Window make_window(const Piece& piece, double u) {
+  Window w;
+  const int p = piece.degree;
+  w.degree = p;
+  std::size_t first = 0;  // index of the window's first control point
+  if (piece.kind == PieceKind::bezier) {
+    w.tau.assign(p, 0.0);
+    w.tau.insert(w.tau.end(), p, 1.0);
+  } else {
+    // Span k with t_k <= u < t_{k+1}, k in [p, n-1]; at the end of the domain the
+    // last non-empty span.
+    const std::vector<double>& t = piece.knots;
+    const std::size_t n = piece.points.size();
+    const auto it = std::upper_bound(t.begin() + p + 1, t.begin() + n, u);
+    const std::size_t k = static_cast<std::size_t>(it - t.begin()) - 1;
+    first = k - p;
+    w.tau.assign(t.begin() + (k - p + 1), t.begin() + (k + p + 1));
+  }
+  w.c.resize(p + 1);
+  for (int j = 0; j <= p; ++j) {
+    const std::size_t i = first + j;
+    const double wi = weight(piece, i);
+    w.c[j] = Hom(wi * piece.points[i].x(), wi * piece.points[i].y(), wi);
+  }
+  return w;
+}
+
+void spline_derivatives(const Piece& piece, double u, int n, Vec2* out) {
+  Window w = make_window(piece, u);
+  std::vector<Hom> scratch;
+  Hom h[4];
+  for (int k = 0; k <= n; ++k) {
+    h[k] = w.degree >= 0 ? de_boor(w, u, scratch) : Hom::Zero();
+    if (w.degree >= 0) differentiate(w);
+  }
+  // Quotient rule on C = A / W: A^(k) = sum_i binom(k, i) W^(i) C^(k-i).
+  static const double binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  const double w0 = h[0].z();
+  for (int k = 0; k <= n; ++k) {
+    Vec2 a = h[k].head<2>();
+    for (int i = 1; i <= k; ++i) a -= binom[k][i] * h[i].z() * out[k - i];
+    out[k] = a / w0;
+  }
+}
+
+}  // namespace
+
+std::pair<double, double> piece_domain(const Piece& piece) {
+  if (piece.kind == PieceKind::bspline) return {piece.knots.front(), piece.knots.back()};
+  return {0.0, 1.0};
+}
+
+ArcGeometry arc_geometry(const Piece& arc) {
+  const Vec2& p0 = arc.points[0];
+  const Vec2& pm = arc.points[1];
+  const Vec2& p1 = arc.points[2];
+  // Circumcentre relative to p0, so the formula loses no digits to the position.
+  const Vec2 a = pm - p0, b = p1 - p0;
+  const double d = 2.0 * (a.x() * b.y() - a.y() * b.x());
+  const double a2 = a.squaredNorm(), b2 = b.squaredNorm();
+  const Vec2 rel((b.y() * a2 - a.y() * b2) / d, (a.x() * b2 - b.x() * a2) / d);
+  ArcGeometry g;
+  g.center = p0 + rel;
+  g.radius = rel.norm();
+  g.start_angle = std::atan2(-rel.y(), -rel.x());
+  const Vec2 e = p1 - g.center;
+  const double end_angle = std::atan2(e.y(), e.x());
+  // d > 0: p0 -> pm -> p1 turns counter-clockwise, so the arc runs counter-clockwise.
+  double ccw = end_angle - g.start_angle;  // in (-2pi, 2pi)
+  if (d > 0) {
+    if (ccw <= 0) ccw += 2 * kPi;
+    g.sweep = ccw;
+  } else {
+    if (ccw >= 0) ccw -= 2 * kPi;
+    g.sweep = ccw;
+  }
+  return g;
+}
+
+void piece_derivatives(const Piece& piece, double u, int n, Vec2* out) {
+  const auto [u0, u1] = piece_domain(piece);
+  u = std::clamp(u, u0, u1);
+  switch (piece.kind) {
+    case PieceKind::line: {
+      const Vec2& p0 = piece.points[0];
+      const Vec2& p1 = piece.points[1];
+      out[0] = (1.0 - u) * p0 + u * p1;  // exact at both ends
+      if (n >= 1) out[1] = p1 - p0;
+      for (int k = 2; k <= n; ++k) out[k] = Vec2::Zero();
+      break;
+    }
+    case PieceKind::arc: {
+      const ArcGeometry g = arc_geometry(piece);
+      const double th = g.start_angle + u * g.sweep;
+      const double c = std::cos(th), s = std::sin(th);
+      out[0] = g.center + g.radius * Vec2(c, s);
+      // d/du (cos, sin) = sweep (-sin, cos): each derivative rotates by 90 degrees.
+      double f = g.radius;
+      Vec2 dir(c, s);
+      for (int k = 1; k <= n; ++k) {
+        f *= g.sweep;
+        dir = Vec2(-dir.y(), dir.x());
+        out[k] = f * dir;
+      }
+      break;
+    }
+    case PieceKind::bezier:
+    case PieceKind::bspline:
+      spline_derivatives(piece, u, n, out);
+      break;
+  }
+  if (u == u0) out[0] = piece.points.front();
+  if (u == u1) out[0] = piece.points.back();
+}
+
+Vec2 piece_point(const Piece& piece, double u) {
+  Vec2 p;
+  piece_derivatives(piece, u, 0, &p);
+  return p;
+}
+
+}  // namespace revdist
