@@ -1,0 +1,138 @@
+// `revdist circles FILE [--engine fast|exact|both] [--json]`: circle-pair
+// distances, closest points and binormal counts (SPEC sections 4 and 5).
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "core/circle_io.h"
+#include "exact/circle_distance_exact.h"
+#include "fast/circle_distance.h"
+
+namespace revdist::cli {
+
+namespace {
+
+using Json = nlohmann::json;
+
+Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+std::string vec_text(const Vec3& v) {
+  return "(" + fixed_digits(v.x(), 6) + ", " + fixed_digits(v.y(), 6) + ", " +
+         fixed_digits(v.z(), 6) + ")";
+}
+
+const char* status_name(CircleCircleStatus s) {
+  return s == CircleCircleStatus::ok ? "ok" : "infinitely_many";
+}
+
+const char* status_name(ExactStatus s) {
+  switch (s) {
+    case ExactStatus::ok: return "ok";
+    case ExactStatus::infinitely_many: return "infinitely_many";
+    case ExactStatus::not_certified: return "not_certified";
+  }
+  return "not_certified";
+}
+
+struct FastAnswer {
+  Circle3Circle3Result result;
+  int binormals = 0;  // from the full binormal enumeration
+};
+
+FastAnswer run_fast(const CirclePair& p) {
+  FastAnswer f;
+  f.result = circle3_circle3_distance(p.a, p.b);
+  bool infinite = false;
+  const auto lines = circle3_circle3_binormals(p.a, p.b, &infinite);
+  f.binormals = infinite ? -1 : static_cast<int>(lines.size());
+  return f;
+}
+
+Json fast_json(const FastAnswer& f) {
+  return Json{{"distance", f.result.distance},
+              {"status", status_name(f.result.status)},
+              {"point_a", vec_json(f.result.point_a)},
+              {"point_b", vec_json(f.result.point_b)},
+              {"binormals", f.binormals}};
+}
+
+Json exact_json(const ExactCircleResult& e) {
+  Json j{{"distance", e.distance},   {"lower", e.lower},
+         {"upper", e.upper},         {"decimal", e.decimal},
+         {"status", status_name(e.status)}, {"contact", e.contact},
+         {"point_a", vec_json(e.point_a)}, {"point_b", vec_json(e.point_b)},
+         {"binormals", e.binormals}};
+  if (e.status == ExactStatus::not_certified) j["reason"] = e.reason;
+  return j;
+}
+
+struct Options {
+  std::string file;
+  std::string engine = "fast";
+  bool json = false;
+};
+
+void run(const Options& o) {
+  const std::vector<CirclePair> pairs = read_circle_pairs(o.file);
+  const bool want_fast = o.engine != "exact";
+  const bool want_exact = o.engine != "fast";
+  const bool progress = want_exact && pairs.size() > 200;  // exact runs ~ms per pair
+
+  Json results = Json::array();
+  Table table(o.engine == "both"
+                  ? std::vector<std::string>{"#", "fast", "exact [lower, upper]", "difference", "status", "binormals"}
+              : want_exact
+                  ? std::vector<std::string>{"#", "distance", "[lower, upper]", "status", "binormals", "point_a", "point_b"}
+                  : std::vector<std::string>{"#", "distance", "status", "binormals", "point_a", "point_b"});
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (progress && i % 100 == 0) std::fprintf(stderr, "\rcircles: %zu/%zu", i, pairs.size());
+    const std::string idx = std::to_string(i);
+    if (o.engine == "both") {
+      const FastAnswer f = run_fast(pairs[i]);
+      const ExactCircleResult e = circle3_circle3_distance_exact(pairs[i].a, pairs[i].b);
+      // Distance of the fast value from the certified interval (0 inside it).
+      const double diff = f.result.distance < e.lower   ? f.result.distance - e.lower
+                          : f.result.distance > e.upper ? f.result.distance - e.upper
+                                                        : 0.0;
+      results.push_back({{"fast", fast_json(f)}, {"exact", exact_json(e)}, {"difference", diff}});
+      table.add({idx, full(f.result.distance), "[" + full(e.lower) + ", " + full(e.upper) + "]",
+                 fixed_digits(diff, 3), status_name(e.status), std::to_string(e.binormals)});
+    } else if (want_fast) {
+      const FastAnswer f = run_fast(pairs[i]);
+      results.push_back(fast_json(f));
+      table.add({idx, full(f.result.distance), status_name(f.result.status),
+                 std::to_string(f.binormals), vec_text(f.result.point_a), vec_text(f.result.point_b)});
+    } else {
+      const ExactCircleResult e = circle3_circle3_distance_exact(pairs[i].a, pairs[i].b);
+      results.push_back(exact_json(e));
+      table.add({idx, full(e.distance), "[" + full(e.lower) + ", " + full(e.upper) + "]",
+                 status_name(e.status) + (e.reason.empty() ? std::string() : " (" + e.reason + ")"),
+                 std::to_string(e.binormals), vec_text(e.point_a), vec_text(e.point_b)});
+    }
+  }
+  if (progress) std::fprintf(stderr, "\rcircles: %zu/%zu\n", pairs.size(), pairs.size());
+
+  if (o.json) {
+    const Json doc{{"format", "revdist-circles-result/1"}, {"engine", o.engine}, {"results", results}};
+    std::printf("%s\n", doc.dump(1).c_str());
+  } else {
+    std::printf("%s", table.str().c_str());
+  }
+}
+
+}  // namespace
+
+void add_circles_command(CLI::App& app) {
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "circles", "Distances between circle pairs of a revdist-circles/1 file: closest points, binormal lines");
+  cmd->add_option("FILE", opts->file, "revdist-circles/1 JSON file")->required();
+  cmd->add_option("--engine", opts->engine, "fast (double), exact (certified interval) or both")
+      ->check(CLI::IsMember({"fast", "exact", "both"}));
+  cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-circles-result/1)");
+  cmd->callback([opts] { run(*opts); });
+}
+
+}  // namespace revdist::cli

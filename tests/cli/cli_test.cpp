@@ -1,0 +1,116 @@
+// End-to-end checks of the `revdist` executable: exit statuses, one-line
+// errors naming file and item, and the JSON keys of SPEC section 5.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+CommandRun run(const std::string& args) {
+  const std::string err_file = testing::TempDir() + "revdist_cli_stderr.txt";
+  const std::string cmd = std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file;
+  CommandRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  if (FILE* e = std::fopen(err_file.c_str(), "r")) {
+    while ((n = fread(buf.data(), 1, buf.size(), e)) > 0) r.err.append(buf.data(), n);
+    std::fclose(e);
+  }
+  return r;
+}
+
+std::string src(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }
+
+TEST(Cli, HelpExitsZero) {
+  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run("circles --help").status, 0);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run("").status, 2);
+  EXPECT_EQ(run("no-such-command").status, 2);
+  EXPECT_EQ(run("circles " + src("cases/circles/coaxial.json") + " --engine nope").status, 2);
+}
+
+TEST(Cli, CirclesJsonHasSpecKeys) {
+  for (const std::string engine : {"fast", "exact"}) {
+    const CommandRun r = run("circles " + src("cases/circles/coplanar.json") + " --json --engine " + engine);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["format"], "revdist-circles-result/1");
+    EXPECT_EQ(doc["engine"], engine);
+    const auto input = nlohmann::json::parse(std::ifstream(src("cases/circles/coplanar.json")));
+    ASSERT_EQ(doc["results"].size(), input["pairs"].size());
+    for (std::size_t i = 0; i < doc["results"].size(); ++i) {
+      const auto& res = doc["results"][i];
+      for (const char* key : {"distance", "status", "point_a", "point_b", "binormals"})
+        EXPECT_TRUE(res.contains(key)) << key;
+      if (engine == "exact") {
+        for (const char* key : {"lower", "upper", "decimal"}) EXPECT_TRUE(res.contains(key)) << key;
+        EXPECT_LE(res["lower"].get<double>(), res["upper"].get<double>());
+        EXPECT_GE(res["decimal"].get<std::string>().size(), 30u);
+        const auto& expected = input["pairs"][i]["expected"];
+        if (!expected.is_null()) {
+          const double e = expected.get<double>();
+          EXPECT_LE(res["lower"].get<double>(), e + 1e-14);
+          EXPECT_GE(res["upper"].get<double>(), e - 1e-14);
+        }
+      }
+    }
+  }
+}
+
+TEST(Cli, CirclesBothReportsDifference) {
+  const CommandRun r = run("circles " + src("cases/circles/villarceau.json") + " --json --engine both");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  for (const auto& res : doc["results"]) {
+    EXPECT_TRUE(res.contains("fast"));
+    EXPECT_TRUE(res.contains("exact"));
+    EXPECT_LE(std::abs(res["difference"].get<double>()), 1e-10);
+  }
+}
+
+TEST(Cli, CirclesTableByDefault) {
+  const CommandRun r = run("circles " + src("cases/circles/coaxial.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("distance"), std::string::npos);
+}
+
+// Each bad file: exit 2, nothing on stdout, exactly one line on stderr naming the file.
+class CliBadCircles : public testing::TestWithParam<std::string> {};
+
+TEST_P(CliBadCircles, OneLineErrorExitTwo) {
+  const std::string file = src("cases/circles/bad/" + GetParam() + ".json");
+  const CommandRun r = run("circles " + file);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  std::printf("%s -> %s", GetParam().c_str(), r.err.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(BadInput, CliBadCircles,
+                         testing::Values("not_json", "infinite_radius", "negative_radius", "zero_normal",
+                                         "short_center", "missing_b", "wrong_format", "string_radius",
+                                         "does_not_exist"));
+
+}  // namespace
