@@ -103,7 +103,115 @@ void spline_derivatives(const Piece& piece, double u, int n, Vec2* out) {
   }
 }
 
+// The blossom (polar form) of the window's spline at (args[0], ..., args[p-1]): de Boor
+// with a different parameter at each level.
+Hom blossom(const Window& w, const double* args) {
+  const int p = w.degree;
+  std::vector<Hom> c(w.c);
+  for (int r = 1; r <= p; ++r) {
+    const double u = args[r - 1];
+    for (int j = p; j >= r; --j) {
+      const double lo = w.tau[j - 1], hi = w.tau[j + p - r];
+      const double a = (u - lo) / (hi - lo);
+      c[j] = (1.0 - a) * c[j - 1] + a * c[j];
+    }
+  }
+  return c[p];
+}
+
+BezierSegment from_homogeneous(const std::vector<Hom>& h, bool rational, double u0, double u1) {
+  BezierSegment s;
+  s.u0 = u0;
+  s.u1 = u1;
+  for (const Hom& q : h) {
+    s.points.push_back(q.head<2>() / q.z());
+    if (rational) s.weights.push_back(q.z());
+  }
+  return s;
+}
+
+std::vector<Hom> to_homogeneous(const BezierSegment& s) {
+  std::vector<Hom> h;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const double w = s.weights.empty() ? 1.0 : s.weights[i];
+    h.emplace_back(w * s.points[i].x(), w * s.points[i].y(), w);
+  }
+  return h;
+}
+
 }  // namespace
+
+std::vector<BezierSegment> piece_bezier_segments(const Piece& piece) {
+  std::vector<BezierSegment> out;
+  switch (piece.kind) {
+    case PieceKind::line:
+    case PieceKind::bezier:
+      out.push_back({piece.points, piece.weights, 0.0, 1.0});
+      break;
+    case PieceKind::arc: {
+      const ArcGeometry g = arc_geometry(piece);
+      const int m = std::max(1, static_cast<int>(std::ceil(std::abs(g.sweep) / (kPi / 2) - 1e-12)));
+      const double phi = g.sweep / m;
+      const double w = std::cos(phi / 2);  // > 0: |phi| <= 90 degrees
+      for (int k = 0; k < m; ++k) {
+        const double a0 = g.start_angle + k * phi, am = a0 + phi / 2, a1 = a0 + phi;
+        BezierSegment s;
+        s.points = {g.center + g.radius * Vec2(std::cos(a0), std::sin(a0)),
+                    g.center + (g.radius / w) * Vec2(std::cos(am), std::sin(am)),
+                    g.center + g.radius * Vec2(std::cos(a1), std::sin(a1))};
+        s.weights = {1.0, w, 1.0};
+        s.u0 = static_cast<double>(k) / m;
+        s.u1 = static_cast<double>(k + 1) / m;
+        out.push_back(std::move(s));
+      }
+      out.front().points.front() = piece.points.front();
+      out.back().points.back() = piece.points.back();
+      for (std::size_t k = 1; k < out.size(); ++k) out[k].points.front() = out[k - 1].points.back();
+      break;
+    }
+    case PieceKind::bspline: {
+      const int p = piece.degree;
+      const std::vector<double>& t = piece.knots;
+      const std::size_t n = piece.points.size();
+      std::vector<double> args(p);
+      for (std::size_t k = p; k < n; ++k) {
+        if (!(t[k] < t[k + 1])) continue;
+        const Window w = make_window(piece, t[k]);
+        std::vector<Hom> h(p + 1);
+        // Bezier point j of span [a, b] is the blossom at (a, ..., a, b, ..., b) with j b's.
+        for (int j = 0; j <= p; ++j) {
+          for (int i = 0; i < p; ++i) args[i] = i < j ? t[k + 1] : t[k];
+          h[j] = blossom(w, args.data());
+        }
+        out.push_back(from_homogeneous(h, !piece.weights.empty(), t[k], t[k + 1]));
+      }
+      for (std::size_t k = 1; k < out.size(); ++k) out[k].points.front() = out[k - 1].points.back();
+      out.front().points.front() = piece.points.front();
+      out.back().points.back() = piece.points.back();
+      break;
+    }
+  }
+  return out;
+}
+
+std::pair<BezierSegment, BezierSegment> split_segment(const BezierSegment& s, double t) {
+  std::vector<Hom> h = to_homogeneous(s);
+  const std::size_t n = h.size();
+  std::vector<Hom> left(n), right(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    left[r] = h[0];
+    right[n - 1 - r] = h[n - 1 - r];
+    for (std::size_t j = 0; j + 1 < n - r; ++j) h[j] = (1.0 - t) * h[j] + t * h[j + 1];
+  }
+  const bool rational = !s.weights.empty();
+  const double um = (1.0 - t) * s.u0 + t * s.u1;
+  std::pair<BezierSegment, BezierSegment> out{from_homogeneous(left, rational, s.u0, um),
+                                              from_homogeneous(right, rational, um, s.u1)};
+  out.first.points.front() = s.points.front();
+  out.second.points.back() = s.points.back();
+  out.second.points.front() = out.first.points.back();
+  return out;
+}
 
 std::pair<double, double> piece_domain(const Piece& piece) {
   if (piece.kind == PieceKind::bspline) return {piece.knots.front(), piece.knots.back()};

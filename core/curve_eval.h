@@ -2,6 +2,7 @@
 // third derivatives, the quantities the spiral split of paper section 4.1 needs.
 #pragma once
 #include <utility>
+#include <vector>
 
 #include "core/profile.h"
 #include "core/vec.h"
@@ -28,5 +29,24 @@ Vec2 piece_point(const Piece& piece, double u);
 // The sweep is positive when p0 -> pm -> p1 turns counter-clockwise in (r, z).
 struct ArcGeometry { Vec2 center; double radius; double start_angle; double sweep; };
 ArcGeometry arc_geometry(const Piece& arc);
+
+// A piece as consecutive rational Bezier segments with positive weights (empty weights:
+// polynomial), the form in which convex-hull and Descartes (sign-change) arguments apply.
+// Segment k covers [u0, u1] of the piece's domain; consecutive segments share end points
+// exactly. bspline: one segment per non-empty knot span (knot insertion by blossoming);
+// bezier and line: the piece itself; arc: rational quadratics of at most 90 degrees each,
+// whose parametrisation differs from the arc's uniform angle (the geometry is the same).
+struct BezierSegment {
+  std::vector<Vec2> points;
+  std::vector<double> weights;
+  double u0 = 0.0, u1 = 1.0;
+  int degree() const { return static_cast<int>(points.size()) - 1; }
+};
+std::vector<BezierSegment> piece_bezier_segments(const Piece& piece);
+
+// Splits a segment at local parameter t in (0, 1) by de Casteljau on homogeneous points;
+// the two halves share the split point exactly. u0/u1 are interpolated linearly, which is
+// exact for polynomial and rational Bezier segments of bezier and bspline pieces.
+std::pair<BezierSegment, BezierSegment> split_segment(const BezierSegment& s, double t);
 
 }  // namespace revdist

@@ -16,8 +16,9 @@ Json read_json_file(const std::string& path) {
   buffer << in.rdbuf();
   try {
     return Json::parse(buffer.str());
-  } catch (const Json::parse_error& e) {
-    // nlohmann's message is one line: "[json.exception.parse_error.101] parse error at line 1, ..."
+  } catch (const Json::exception& e) {
+    // parse_error for bad syntax, out_of_range 406 for numbers such as 1e999 that overflow a
+    // double. nlohmann's message is one line: "[json.exception.parse_error.101] parse error at line 1, ..."
     std::string what = e.what();
     const auto pos = what.find("] ");
     if (pos != std::string::npos) what = what.substr(pos + 2);

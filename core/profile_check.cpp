@@ -1,0 +1,300 @@
+// Profile validation: joins, axis contact, r >= 0 and self-intersection, proven by
+// Bezier hull arguments and subdivision (see profile_check.h for what is proven).
+#include "core/profile_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "core/curve_eval.h"
+#include "core/input_error.h"
+
+namespace revdist {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+std::string fmt(const Vec2& p) { return "(" + fmt(p.x()) + ", " + fmt(p.y()) + ")"; }
+
+[[noreturn]] void fail_piece(const std::string& where, std::size_t piece, const std::string& problem) {
+  throw InputError(where + " piece " + std::to_string(piece) + ": " + problem);
+}
+[[noreturn]] void fail(const std::string& where, const std::string& problem) {
+  throw InputError(where + ": " + problem);
+}
+
+double weight(const BezierSegment& s, std::size_t i) { return s.weights.empty() ? 1.0 : s.weights[i]; }
+
+// --- r bounds -------------------------------------------------------------------------
+
+// Whether some point of s has r < level (or undecided at the depth limit); *at gets it.
+// r - level = sum w_i (r_i - level) B_i / sum w_i B_i with w_i > 0, so non-negative
+// coefficients prove r >= level on the whole segment.
+bool r_below(const BezierSegment& s, double level, int depth, Vec2* at) {
+  bool all_above = true;
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (weight(s, i) * (s.points[i].x() - level) < 0) all_above = false;
+  if (all_above) return false;
+  for (const Vec2& end : {s.points.front(), s.points.back()}) {
+    if (end.x() < level) {
+      *at = end;
+      return true;
+    }
+  }
+  if (depth == 0) {
+    *at = split_segment(s, 0.5).first.points.back();
+    return true;
+  }
+  const auto halves = split_segment(s, 0.5);
+  return r_below(halves.first, level, depth - 1, at) || r_below(halves.second, level, depth - 1, at);
+}
+
+// --- geometry of segments -------------------------------------------------------------
+
+struct Box {
+  Vec2 lo, hi;
+};
+Box box_of(const BezierSegment& s) {
+  Box b{s.points[0], s.points[0]};
+  for (const Vec2& p : s.points) {
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+double box_distance(const Box& a, const Box& b) {
+  const Vec2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec2::Zero());
+  return gap.norm();
+}
+
+double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
+  const double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);
+  const double d3 = cross(b1 - b0, a0 - b0), d4 = cross(b1 - b0, a1 - b0);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
+  return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                   point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+}
+
+// Max distance of the control points from the chord: the segment lies in their hull, so
+// within this of the chord; and since it runs from one chord end to the other inside
+// that band, every chord point is within it of the segment too (Hausdorff bound).
+double flatness(const BezierSegment& s) {
+  double e = 0;
+  for (const Vec2& p : s.points) e = std::max(e, point_segment_distance(p, s.points.front(), s.points.back()));
+  return e;
+}
+
+double polygon_length(const BezierSegment& s) {
+  double l = 0;
+  for (std::size_t i = 1; i < s.points.size(); ++i) l += (s.points[i] - s.points[i - 1]).norm();
+  return l;
+}
+
+double diameter(const BezierSegment& s) {
+  const Box b = box_of(s);
+  return (b.hi - b.lo).norm();
+}
+
+// Whether the non-zero vectors lie in an open half-plane (some n has n.v > 0 for all):
+// the largest angular gap between them exceeds pi. A small margin keeps rounding of
+// atan2 from deciding nearly opposite vectors.
+bool in_open_half_plane(const std::vector<Vec2>& vs) {
+  std::vector<double> angles;
+  for (const Vec2& v : vs)
+    if (v.x() != 0 || v.y() != 0) angles.push_back(std::atan2(v.y(), v.x()));
+  if (angles.size() <= 1) return true;
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2 * kPi - angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  return gap > kPi + 1e-12;
+}
+
+// Injective: with positive weights, edges in an open half-plane make the projection on
+// its normal strictly monotone (a Bernstein numerator with one sign change has one root).
+bool injective(const BezierSegment& s) {
+  std::vector<Vec2> edges;
+  for (std::size_t i = 1; i < s.points.size(); ++i) edges.push_back(s.points[i] - s.points[i - 1]);
+  return in_open_half_plane(edges);
+}
+
+struct Seg {
+  BezierSegment bez;
+  std::size_t piece;
+  double chain_start;  // upper bound of the arc length from the profile start
+  double length;       // upper bound of its arc length (control polygon length)
+};
+
+void cut_injective(const BezierSegment& s, std::size_t piece, double tol, int depth, std::vector<Seg>& out) {
+  if (injective(s) || depth == 0 || diameter(s) <= tol) {
+    out.push_back({s, piece, 0.0, polygon_length(s)});
+    return;
+  }
+  const auto halves = split_segment(s, 0.5);
+  cut_injective(halves.first, piece, tol, depth - 1, out);
+  cut_injective(halves.second, piece, tol, depth - 1, out);
+}
+
+// Whether a and b come within tol of each other (or stay undecided down to the depth
+// limit); *at gets a point near the contact.
+bool near(const BezierSegment& a, const BezierSegment& b, double tol, int depth, Vec2* at) {
+  if (box_distance(box_of(a), box_of(b)) > tol) return false;
+  const double ea = flatness(a), eb = flatness(b);
+  const double d = segment_distance(a.points.front(), a.points.back(), b.points.front(), b.points.back());
+  if (d - ea - eb > tol) return false;
+  if (d + ea + eb <= tol || depth == 0) {
+    *at = 0.5 * (a.points.front() + a.points.back());
+    return true;
+  }
+  if (ea >= eb) {
+    const auto h = split_segment(a, 0.5);
+    return near(h.first, b, tol, depth - 1, at) || near(h.second, b, tol, depth - 1, at);
+  }
+  const auto h = split_segment(b, 0.5);
+  return near(a, h.first, tol, depth - 1, at) || near(a, h.second, tol, depth - 1, at);
+}
+
+// a ends where b starts (at j). Proves they share no other point: a line through j that
+// has a's control points on one side and b's on the other separates the two hulls.
+// Subdivides towards j; the far halves must stay more than tol apart from the other
+// segment. Returns false with *at set when that fails (a fold-back or a crossing).
+bool meet_only_at_joint(const BezierSegment& a, const BezierSegment& b, double tol, int depth, Vec2* at) {
+  const Vec2 j = b.points.front();
+  std::vector<Vec2> dirs;
+  for (std::size_t i = 0; i + 1 < a.points.size(); ++i) dirs.push_back(a.points[i] - j);
+  for (std::size_t i = 1; i < b.points.size(); ++i) dirs.push_back(j - b.points[i]);
+  if (in_open_half_plane(dirs)) return true;
+  *at = j;
+  if (depth == 0 || polygon_length(a) <= 4 * tol || polygon_length(b) <= 4 * tol) return false;
+  const auto ha = split_segment(a, 0.5), hb = split_segment(b, 0.5);
+  if (near(ha.first, hb.first, tol, 60, at) || near(ha.first, hb.second, tol, 60, at) ||
+      near(ha.second, hb.second, tol, 60, at))
+    return false;
+  return meet_only_at_joint(ha.second, hb.first, tol, depth - 1, at);
+}
+
+}  // namespace
+
+double profile_size(const Profile& profile) {
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Piece& p : profile.pieces)
+    for (const Vec2& q : p.points) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  return profile.pieces.empty() ? 0.0 : (hi - lo).norm();
+}
+
+double profile_tolerance(const Profile& profile) { return 1e-9 * profile_size(profile); }
+
+void join_profile(Profile& profile, const std::string& where) {
+  if (profile.pieces.empty()) fail(where, "the profile has no pieces");
+  const double tol = profile_tolerance(profile);
+  if (!(tol > 0)) fail(where, "the profile is a single point");
+  std::vector<Piece>& ps = profile.pieces;
+  for (std::size_t i = 1; i < ps.size(); ++i) {
+    const Vec2 gap = ps[i].start() - ps[i - 1].end();
+    if (gap.norm() > tol)
+      fail_piece(where, i,
+                 "does not join piece " + std::to_string(i - 1) + ": starts at " + fmt(ps[i].start()) +
+                     ", previous ends at " + fmt(ps[i - 1].end()) + " (gap " + fmt(gap.norm()) +
+                     " > tolerance " + fmt(tol) + ")");
+    ps[i].points.front() = ps[i - 1].points.back();
+  }
+  const Vec2 first = ps.front().start(), last = ps.back().end();
+  const bool ends_on_axis = std::abs(first.x()) <= tol && std::abs(last.x()) <= tol;
+  if ((last - first).norm() <= tol) {
+    if (ends_on_axis) fail(where, "closed loop touches the axis at " + fmt(first));
+    ps.back().points.back() = ps.front().points.front();
+    profile.closed_loop = true;
+  } else if (ends_on_axis) {
+    ps.front().points.front().x() = 0.0;
+    ps.back().points.back().x() = 0.0;
+    profile.closed_loop = false;
+  } else {
+    fail(where, "the profile neither reaches the axis at both ends nor closes: starts at " + fmt(first) +
+                    ", ends at " + fmt(last));
+  }
+}
+
+void check_profile(const Profile& profile, const std::string& where) {
+  const double tol = profile_tolerance(profile);
+  const std::vector<Piece>& ps = profile.pieces;
+  std::vector<Seg> segs;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const BezierSegment all{ps[i].points, {}, 0, 1};
+    if (diameter(all) <= tol) fail_piece(where, i, "degenerate piece (all its points within " + fmt(tol) + ")");
+    for (const BezierSegment& s : piece_bezier_segments(ps[i])) {
+      Vec2 at;
+      if (profile.closed_loop && r_below(s, tol, 40, &at))
+        fail_piece(where, i, "closed loop touches or crosses the axis near " + fmt(at));
+      if (!profile.closed_loop && r_below(s, -tol, 40, &at))
+        fail_piece(where, i, "negative r: the curve reaches r = " + fmt(at.x()) + " < 0 at " + fmt(at));
+      cut_injective(s, i, tol, 30, segs);
+    }
+  }
+  // A closed loop of one or two segments would have adjacent segments sharing both ends.
+  while (profile.closed_loop && segs.size() < 4) {
+    std::vector<Seg> finer;
+    for (const Seg& s : segs) {
+      const auto h = split_segment(s.bez, 0.5);
+      finer.push_back({h.first, s.piece, 0.0, polygon_length(h.first)});
+      finer.push_back({h.second, s.piece, 0.0, polygon_length(h.second)});
+    }
+    segs.swap(finer);
+  }
+  double chain = 0;
+  for (Seg& s : segs) {
+    s.chain_start = chain;
+    chain += s.length;
+  }
+  const std::size_t m = segs.size();
+  auto describe = [&](const Seg& a, const Seg& b, const Vec2& at) {
+    const std::string who = a.piece == b.piece ? "piece " + std::to_string(a.piece) + " meets itself"
+                                               : "pieces " + std::to_string(a.piece) + " and " +
+                                                     std::to_string(b.piece) + " meet";
+    return "self-intersecting profile: " + who + " near " + fmt(at);
+  };
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t k = i + 1; k < m; ++k) {
+      const Seg& a = segs[i];
+      const Seg& b = segs[k];
+      Vec2 at;
+      const bool adjacent = k == i + 1;
+      const bool wrap_adjacent = profile.closed_loop && i == 0 && k == m - 1 && m > 1;
+      if (adjacent || wrap_adjacent) {
+        const bool ok = adjacent ? meet_only_at_joint(a.bez, b.bez, tol, 40, &at)
+                                 : meet_only_at_joint(b.bez, a.bez, tol, 40, &at);
+        if (!ok) {
+          if (a.piece == b.piece && !wrap_adjacent) fail(where, describe(a, b, at));
+          fail(where, "self-intersecting profile: pieces " + std::to_string(adjacent ? a.piece : b.piece) +
+                          " and " + std::to_string(adjacent ? b.piece : a.piece) +
+                          " fold back or cross at their joint near " + fmt(at));
+        }
+        continue;
+      }
+      double between = b.chain_start - (a.chain_start + a.length);
+      if (profile.closed_loop) between = std::min(between, chain - (b.chain_start + b.length) + a.chain_start);
+      if (between <= 4 * tol) continue;  // within tolerance of adjacent: see profile_check.h
+      if (near(a.bez, b.bez, tol, 60, &at)) fail(where, describe(a, b, at));
+    }
+  }
+}
+
+}  // namespace revdist

@@ -1,0 +1,142 @@
+// revdist/1 reading: every bundled model reads; every file in cases/bad fails with one
+// line naming the file and the item; keyframe blending.
+#include "core/case_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "core/curve_eval.h"
+#include "core/input_error.h"
+#include "core/profile_check.h"
+
+namespace revdist {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kSource = REVDIST_SOURCE_DIR;
+
+std::vector<std::string> json_files(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(kSource + "/" + dir))
+    if (e.path().extension() == ".json") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(CaseIo, EveryModelReads) {
+  const auto files = json_files("cases/models");
+  ASSERT_GE(files.size(), 10u);
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    Case c;
+    ASSERT_NO_THROW(c = read_case(f)) << [&] {
+      try { read_case(f); } catch (const std::exception& e) { return std::string(e.what()); }
+      return std::string();
+    }();
+    EXPECT_FALSE(c.instances.empty());
+    EXPECT_FALSE(c.queries.empty());
+  }
+}
+
+
+// Each file in cases/bad and a fragment its one-line message must contain.
+const std::map<std::string, std::string> kBad = {
+    {"arc_collinear", R"(solid "can" piece 1: arc points are collinear)"},
+    {"bad_degree", R"(solid "vase" piece 0: degree 2.5)"},
+    {"blend_self_intersecting", R"(instance "a" (solid "morph" at time 0.5): self-intersecting)"},
+    {"bspline_knot_count", R"(solid "vase" piece 0: degree 3 with 5 points needs 9 knots, got 8)"},
+    {"bspline_too_few_points", R"(solid "vase" piece 1: degree 3 needs at least 4 points)"},
+    {"duplicate_instance", R"(instance "a": duplicate instance name)"},
+    {"fold_back", R"(solid "spike": self-intersecting profile: pieces 1 and 2 fold back)"},
+    {"infinity", R"(number overflow)"},
+    {"keyframes_mismatch", R"(solid "morph" keyframe 1 piece 1: degree 3 with 4 points)"},
+    {"knots_decreasing", R"(solid "vase" piece 0: knots decrease)"},
+    {"knots_not_clamped", R"(solid "vase" piece 0: knots not clamped)"},
+    {"loop_crosses_axis", R"(solid "ring" piece 1: closed loop touches or crosses the axis)"},
+    {"loop_touches_axis", R"(solid "ring" piece 1: closed loop touches or crosses the axis)"},
+    {"missing_format", R"(missing "format")"},
+    {"nan_string", R"(solid "can" piece 1 point 1[1]: expected a finite number)"},
+    {"negative_r_arc", R"(solid "bulge" piece 1: negative r)"},
+    {"negative_r_curve", R"(solid "lens" piece 1: negative r)"},
+    {"negative_r_point", R"(solid "can" piece 1: negative r)"},
+    {"not_closed", R"(solid "cup": the profile neither reaches the axis at both ends nor closes)"},
+    {"not_json", R"(not JSON)"},
+    {"pieces_not_joined", R"(solid "can" piece 1: does not join piece 0)"},
+    {"self_intersecting", R"(solid "knot": self-intersecting profile: pieces 1 and 3 meet)"},
+    {"self_intersecting_piece", R"(solid "loop": self-intersecting profile: piece 1 meets itself)"},
+    {"time_on_static", R"(instance "a": time 0.5 given for static solid "can")"},
+    {"time_out_of_range", R"(instance "a": time 1.5 outside [0, 1])"},
+    {"unknown_instance_query", R"(queries[1]: unknown instance "c")"},
+    {"unknown_piece", R"(solid "ring" piece 1: unknown piece type "circle")"},
+    {"unknown_solid", R"(instance "b": unknown solid "cna")"},
+    {"weight_nonpositive", R"(solid "vase" piece 2: weight -1 <= 0)"},
+    {"wrong_format", R"(format: expected "revdist/1")"},
+    {"wrong_point_count", R"(solid "can" piece 0: a line needs 2 points, got 3)"},
+    {"zero_quaternion", R"(instance "a" rotation: the zero quaternion)"},
+};
+
+TEST(CaseIo, EveryBadFileFailsWithOneNamedLine) {
+  const auto files = json_files("cases/bad");
+  EXPECT_EQ(files.size(), kBad.size()) << "every bad case needs an expected message here";
+  for (const std::string& f : files) {
+    const std::string stem = fs::path(f).stem().string();
+    SCOPED_TRACE(stem);
+    ASSERT_TRUE(kBad.count(stem)) << "no expected message for " << f;
+    try {
+      read_case(f);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+      EXPECT_EQ(m.rfind(f + ": ", 0), 0u) << m;
+      EXPECT_NE(m.find(kBad.at(stem)), std::string::npos) << m;
+    }
+  }
+}
+
+TEST(CaseIo, MissingFileIsInputError) {
+  EXPECT_THROW(read_case(kSource + "/cases/bad/no_such_file.json"), InputError);
+}
+
+TEST(CaseIo, AllPairsWhenQueriesAbsentAndPaperPairs) {
+  const Case c = read_case(kSource + "/cases/models/paper_pairs.json");
+  EXPECT_EQ(c.solids.size(), 5u);
+  EXPECT_EQ(c.queries.size(), 15u);
+}
+
+TEST(CaseIo, ProfileAtBlendsKeyframes) {
+  const Case c = read_case(kSource + "/cases/models/morph.json");
+  const SolidDef& s = c.solids.at(0);
+  ASSERT_EQ(s.keyframes.size(), 5u);
+  // Integer times are exactly the keyframes; half-way is the average of the control points.
+  const Profile p1 = profile_at(s, 1.0), p2 = profile_at(s, 2.0), mid = profile_at(s, 1.5);
+  for (std::size_t i = 0; i < mid.pieces.size(); ++i)
+    for (std::size_t j = 0; j < mid.pieces[i].points.size(); ++j) {
+      EXPECT_EQ(p1.pieces[i].points[j], s.keyframes[1].pieces[i].points[j]);
+      const Vec2 avg = 0.5 * (p1.pieces[i].points[j] + p2.pieces[i].points[j]);
+      EXPECT_NEAR((mid.pieces[i].points[j] - avg).norm(), 0.0, 1e-15);
+    }
+  // Joins stay exact in a blend: blends of equal points are equal.
+  for (std::size_t i = 1; i < mid.pieces.size(); ++i) EXPECT_EQ(mid.pieces[i].start(), mid.pieces[i - 1].end());
+  EXPECT_EQ(profile_at(s, 99.0).pieces[1].points, s.keyframes[4].pieces[1].points);  // clamped
+}
+
+TEST(CaseIo, JoinsSnapAndTolerance) {
+  // A gap of 1e-12 on a profile of size ~2 is within the 1e-9 relative tolerance and is closed.
+  const std::string path = testing::TempDir() + "/revdist_snap.json";
+  std::ofstream(path) << R"({"format":"revdist/1","solids":{"can":{"profile":[
+    {"line":[[0,0],[0.5,0]]},{"line":[[0.5,1e-12],[0.5,2]]},{"line":[[0.5,2],[1e-12,2]]}]}}})";
+  const Case c = read_case(path);
+  const Profile& p = c.solids[0].keyframes[0];
+  EXPECT_EQ(p.pieces[1].start(), p.pieces[0].end());
+  EXPECT_EQ(p.pieces[2].end().x(), 0.0);
+  EXPECT_FALSE(p.closed_loop);
+  EXPECT_TRUE(c.instances.empty());
+  EXPECT_TRUE(read_case(kSource + "/cases/models/torus.json").solids[0].keyframes[0].closed_loop);
+}
+
+}  // namespace
+}  // namespace revdist
