@@ -20,12 +20,20 @@ struct ExactCircleResult {
   std::string reason;     // why not_certified, empty otherwise
   double lower = 0.0;     // outward-rounded double bounds of the certified interval
   double upper = 0.0;
+  double width = 0.0;     // upper end minus lower end of the certified interval, rounded up
   double distance = 0.0;  // nearest double to a point of the interval
   std::string decimal;    // a point of the interval, >= 30 significant digits
   bool contact = false;   // proven exactly: the circles share a point (then lower = upper = 0)
   Vec3 point_a = Vec3::Zero();  // a closest pair, rounded to double
   Vec3 point_b = Vec3::Zero();
-  int binormals = 0;      // number of binormal lines; -1 when infinitely many
+  // Binormal feet on b: the number of distinct points P of circle b at which
+  // some binormal line meets b, i.e. P has a point Q != P of a such that
+  // (P, Q) is a critical pair of |P - Q|^2 (near or far branch). -1 when there
+  // are infinitely many (coaxial circles, Villarceau and meridian pairs, a
+  // point on the axis of a). When b is a point: 1 (0 if it coincides with a's
+  // point). Exact, like the rest: roots of the binormal polynomial with the
+  // sign of y decided on algebraic numbers.
+  int binormals = 0;
 };
 
 struct ExactOptions {
@@ -36,6 +44,12 @@ struct ExactOptions {
 };
 
 // Certified minimum distance between circles a and b (radius 0 = a point).
+// The doubles are read as exact rationals; the result is an interval proven
+// to contain the distance, of width <= options.relative_width * scale with
+// scale = max(r_a, r_b, |C_a - C_b|), or status not_certified with a reason.
+// Contact (distance exactly 0) is decided exactly. Never throws.
+// status infinitely_many: the minimum is attained on a continuum (coaxial and
+// Villarceau pairs, a point or a closest point on the axis of the other circle).
 ExactCircleResult circle3_circle3_distance_exact(const Circle3& a, const Circle3& b,
                                                  const ExactOptions& options = {});
 
