@@ -8,8 +8,7 @@
 namespace revdist {
 
 // A binormal line of two circles: a critical pair (p_a on a, p_b on b, p_a != p_b)
-// of the squared distance, on the near or the far branch. For a pair that has
-// finitely many, each line is reported once.
+// of the squared distance, on the near or the far branch.
 struct CircleBinormal {
   Vec3 point_a;
   Vec3 point_b;
@@ -22,23 +21,44 @@ enum class CircleCircleStatus {
 };
 
 struct Circle3Circle3Result {
-  double distance = 0.0;  // >= 0; exactly 0 when the circles are found to meet
+  // >= 0. Computed as sqrt(Z^2 + (ρ - R)^2), so touching and intersecting circles
+  // give a few ε·scale, not exactly 0: the fast engine does not decide contact.
+  double distance = 0.0;
   Vec3 point_a = Vec3::Zero();  // a closest point on a (world frame)
   Vec3 point_b = Vec3::Zero();  // a closest point on b
   CircleCircleStatus status = CircleCircleStatus::ok;
-  // Number of binormal lines; -1 when there are infinitely many.
+  // -1 when there are infinitely many closest pairs. Otherwise 0, meaning "not
+  // computed here": the count costs a degree-8 root isolation (several µs), so it
+  // is computed on request by circle3_circle3_binormals (every pair of circles
+  // has at least one binormal line, its farthest pair, so 0 is never a count).
   int binormals = 0;
 };
 
 // Minimum distance between circles a and b (radius 0 = a point), with one
 // closest pair and the status. Never throws; degenerate configurations are
-// reported as data. Inputs must be finite with non-zero normals.
+// reported as data. Inputs must be finite with non-zero normals (any length).
+// Symmetric: swapping a and b swaps the points and gives the same distance bit
+// for bit. Scaling both circles by a power of two scales the answer exactly.
+// Accuracy: within a few ε·scale of the true distance, scale =
+// max(r_a, r_b, |c_a - c_b|) (tests: 1e-13·scale random, 1e-10·scale degenerate).
 Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b);
 
-// All binormal lines of a and b (empty and infinitely_many=true when there are
-// infinitely many). Slower than circle3_circle3_distance; used by the CLI and
-// the tests, not on the hot path.
+// The binormal lines of a and b, counted on circle b: the number of binormals
+// is the number of distinct points Q of circle b at which some binormal line
+// meets b. This returns one line per such point Q (the shortest line at Q when
+// several meet there: a near and a far line at a symmetric point, or the lines
+// from a point of a's axis), so its size() is that count. Lines of zero length
+// (contact points) are not binormals. *infinitely_many is set when the points Q
+// form a continuum (coaxial, Villarceau, meridian circles, a point centre on b's
+// axis); the vector is then empty. Slower than circle3_circle3_distance (a
+// degree-8 root isolation); used by the CLI and the tests, not on the hot path.
 std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Circle3& b,
                                                       bool* infinitely_many = nullptr);
+
+// Every binormal line of a and b, including several at one point Q of b (near
+// and far, or the ones through a point of a's axis; at a point Q with a whole
+// cone of lines, one representative). Same infinitely_many convention.
+std::vector<CircleBinormal> circle3_circle3_binormal_lines(const Circle3& a, const Circle3& b,
+                                                           bool* infinitely_many = nullptr);
 
 }  // namespace revdist

@@ -1,0 +1,280 @@
+// Binormal lines of two circles in double (paper section 3.2, Appendix A).
+//
+// Circle b is parameterised by θ; with Δ = P(θ) - C_a in a's frame (X, Y, Z),
+// T = P'(θ), L = Δ·T, Qp = (X, Y)·(X', Y') and ρ = |(X, Y)|, the squared distance
+// to a's near (σ = +1) or far (σ = -1) point has derivative 2(L - σR·Qp/ρ). Both
+// branches at once: Φ = ρ^2 L^2 - R^2 Qp^2 = 0, a trig polynomial of degree 4,
+// degree 8 in t = tan(θ/2) (the paper's polynomial). Its real roots are isolated
+// on two charts (so none is lost at θ = π), kept when they touch zero (double
+// roots of mirror-symmetric pairs, multiplicity 4 at tangency), then polished by
+// Newton on the smooth branch function L - σR·Qp/ρ and accepted only where it
+// vanishes to rounding. Φ also vanishes doubly where b crosses a's axis (ρ = 0);
+// those points are found as minima of ρ^2 and answered by construction: the
+// lines from such a point Q to the points of a in the plane through Q normal to b.
+#include <algorithm>
+#include <cmath>
+
+#include "fast/circle_distance.h"
+#include "fast/circle_internal.h"
+
+namespace revdist {
+
+namespace {
+
+using namespace circle_detail;
+
+struct Line {
+  double th;  // on b
+  Vec3 on_a;  // world
+  double dist;
+};
+
+struct Pt {
+  double X, Y, Z, X1, Y1, Z1, X2, Y2, Z2;
+};
+
+Pt at(const PairCoeffs& k, double th) {
+  const double c = std::cos(th), s = std::sin(th);
+  Pt p;
+  p.X = k.x0 + k.x1 * c + k.x2 * s;
+  p.Y = k.y0 + k.y1 * c + k.y2 * s;
+  p.Z = k.z0 + k.z1 * c + k.z2 * s;
+  p.X1 = k.x2 * c - k.x1 * s;
+  p.Y1 = k.y2 * c - k.y1 * s;
+  p.Z1 = k.z2 * c - k.z1 * s;
+  p.X2 = -(k.x1 * c + k.x2 * s);
+  p.Y2 = -(k.y1 * c + k.y2 * s);
+  p.Z2 = -(k.z1 * c + k.z2 * s);
+  return p;
+}
+
+// Newton on the branch derivative ψ = L - σR·Qp/ρ from th. Returns false when it
+// does not converge to a zero of ψ near th or runs into a's axis.
+bool polish_branch(const PairCoeffs& k, double sigma, double* th) {
+  const double th0 = *th;
+  double t = th0;
+  for (int it = 0; it < 60; ++it) {
+    const Pt p = at(k, t);
+    const double rho = std::sqrt(p.X * p.X + p.Y * p.Y);
+    if (rho <= 1e-9) return false;  // the axis is answered by construction
+    const double L = p.X * p.X1 + p.Y * p.Y1 + p.Z * p.Z1;
+    const double Qp = p.X * p.X1 + p.Y * p.Y1;
+    const double L1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.Z1 * p.Z1 + p.X * p.X2 + p.Y * p.Y2 + p.Z * p.Z2;
+    const double Qp1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.X * p.X2 + p.Y * p.Y2;
+    const double psi = L - sigma * k.R * Qp / rho;
+    const double dpsi = L1 - sigma * k.R * (Qp1 / rho - Qp * Qp / (rho * rho * rho));
+    // Size of the terms of ψ: its rounding error is a few ε times this.
+    const double mag = std::abs(p.X * p.X1) + std::abs(p.Y * p.Y1) + std::abs(p.Z * p.Z1) +
+                       k.R * (std::abs(p.X * p.X1) + std::abs(p.Y * p.Y1)) / rho;
+    if (std::abs(psi) <= 16 * kEps * mag) {
+      *th = t;
+      return std::abs(wrap_pi(t - th0)) < 1e-2;
+    }
+    if (dpsi == 0) return false;
+    double step = -psi / dpsi;
+    step = std::clamp(step, -1e-2, 1e-2);
+    t += step;
+    if (std::abs(step) <= 1e-16) {
+      *th = t;
+      return std::abs(psi) <= 1e-9 * std::max(mag, 1e-300) && std::abs(wrap_pi(t - th0)) < 1e-2;
+    }
+  }
+  return false;
+}
+
+// Points where b crosses a's axis: minima of ρ^2 (roots of Qp, a quartic in t)
+// where ρ vanishes to rounding.
+int axis_crossings(const PairCoeffs& k, double* th_out) {
+  double X[3], Y[3], Xd[3], Yd[3], q[5], q2[5];
+  trig1_to_t(k.x0, k.x1, k.x2, X);
+  trig1_to_t(k.y0, k.y1, k.y2, Y);
+  trig1_to_t(0, k.x2, -k.x1, Xd);
+  trig1_to_t(0, k.y2, -k.y1, Yd);
+  poly_mul(X, 2, Xd, 2, q);
+  poly_mul(Y, 2, Yd, 2, q2);
+  for (int i = 0; i <= 4; ++i) q[i] += q2[i];
+  double th[8];
+  const int n = trig_poly_roots(q, 4, th);
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    // Newton on Qp = (ρ^2)'/2 polishes the minimum of ρ^2.
+    double t = th[i];
+    for (int it = 0; it < 8; ++it) {
+      const Pt p = at(k, t);
+      const double Qp = p.X * p.X1 + p.Y * p.Y1;
+      const double Qp1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.X * p.X2 + p.Y * p.Y2;
+      if (Qp1 <= 0) break;
+      t -= Qp / Qp1;
+    }
+    const Pt p = at(k, t);
+    // ρ at scale ~1 after frame rounding: a few ε; 64ε with margin.
+    if (std::sqrt(p.X * p.X + p.Y * p.Y) <= 64 * kEps) th_out[m++] = t;
+  }
+  return m;
+}
+
+Vec3 on_b(const CircleFrame& b, double th) {
+  return b.center + b.radius * (std::cos(th) * b.u + std::sin(th) * b.v);
+}
+
+std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infinite) {
+  *infinite = false;
+  std::vector<Line> out;
+  const double sigma = circle_pair_sigma(a_in, b_in);
+  const CircleFrame a = make_frame(a_in), b = make_frame(b_in);
+  const double contact = 64 * kEps;  // scaled: a line this short is a contact point
+  if (b.radius == 0) {
+    // Named: b a point Q. Lines to a's near and far points, or (Q on a's axis) a cone.
+    const Vec3 d = (b.center - a.center) * sigma;
+    const double h = d.dot(a.n), px = d.dot(a.u), py = d.dot(a.v);
+    const double rho = std::sqrt(px * px + py * py), R = a.radius * sigma;
+    if (R == 0 || rho <= 8 * kEps * d.cwiseAbs().maxCoeff()) {
+      const double len = std::sqrt(h * h + R * R);
+      if (len > contact) out.push_back({0, a.center + a.radius * a.u, len / sigma});
+      return out;
+    }
+    const Vec3 dir = (px * a.u + py * a.v) / rho;
+    for (double sg : {1.0, -1.0}) {
+      const double e = rho - sg * R;
+      const double len = std::sqrt(h * h + e * e);
+      if (len > contact) out.push_back({0, a.center + sg * a.radius * dir, len / sigma});
+    }
+    return out;
+  }
+  const PairCoeffs k = make_coeffs(b, a, sigma);
+  if (k.R == 0) {
+    // Named: a a point. Critical points of |P - C_a|^2 = a0 + a1 cosθ + b1 sinθ;
+    // C_a on b's axis makes it constant.
+    if (std::hypot(k.a1, k.b1) <= 64 * kEps) {
+      *infinite = true;
+      return out;
+    }
+    const double th0 = std::atan2(k.b1, k.a1);
+    for (double th : {th0, wrap_pi(th0 + kPi)}) {
+      const double len = std::sqrt(std::max(0.0, k.a0 + k.a1 * std::cos(th) + k.b1 * std::sin(th)));
+      if (len > contact) out.push_back({th, a.center, len / sigma});
+    }
+    return out;
+  }
+  // The binormal polynomial Φ in t, with a bound on its terms.
+  auto phi_poly = [](const PairCoeffs& r, double* phi, double* mag) {
+    double X[3], Y[3], Xd[3], Yd[3], L[3];
+    trig1_to_t(r.x0, r.x1, r.x2, X);
+    trig1_to_t(r.y0, r.y1, r.y2, Y);
+    trig1_to_t(0, r.x2, -r.x1, Xd);
+    trig1_to_t(0, r.y2, -r.y1, Yd);
+    trig1_to_t(0, 0.5 * r.b1, -0.5 * r.a1, L);  // L = (|Δ|^2)'/2
+    double rho2[5], t1[5], Qp[5], L2[5], A[9], B[9];
+    poly_mul(X, 2, X, 2, rho2);
+    poly_mul(Y, 2, Y, 2, t1);
+    for (int i = 0; i <= 4; ++i) rho2[i] += t1[i];
+    poly_mul(X, 2, Xd, 2, Qp);
+    poly_mul(Y, 2, Yd, 2, t1);
+    for (int i = 0; i <= 4; ++i) Qp[i] += t1[i];
+    poly_mul(L, 2, L, 2, L2);
+    poly_mul(rho2, 4, L2, 4, A);
+    poly_mul(Qp, 4, Qp, 4, B);
+    double m = 0;
+    for (int i = 0; i <= 8; ++i) {
+      phi[i] = A[i] - r.R * r.R * B[i];
+      m += std::abs(A[i]) + r.R * r.R * std::abs(B[i]);
+    }
+    *mag = m;
+  };
+  double phi[9], mag;
+  phi_poly(k, phi, &mag);
+  double big = 0;
+  for (double c : phi) big = std::max(big, std::abs(c));
+  if (big <= 256 * kEps * mag) {
+    // Named: Φ ≡ 0 (coaxial, Villarceau, meridian): every point of b is critical
+    // for the near or the far branch.
+    *infinite = true;
+    return out;
+  }
+  double th[16];
+  const int n = trig_poly_roots(phi, 8, th);
+  for (int i = 0; i < n; ++i) {
+    for (double sg : {1.0, -1.0}) {
+      double t = th[i];
+      if (!polish_branch(k, sg, &t)) continue;
+      const Pt p = at(k, t);
+      const double rho = std::sqrt(p.X * p.X + p.Y * p.Y);
+      const double e = rho - sg * k.R;
+      const double len = std::sqrt(p.Z * p.Z + e * e);
+      if (len <= contact) continue;
+      const Vec3 dir = (p.X * a.u + p.Y * a.v) / rho;
+      out.push_back({wrap_pi(t), a.center + sg * a.radius * dir, len / sigma});
+    }
+  }
+  // Named: b crosses a's axis at Q. The lines from Q to the points of a in the
+  // plane through Q normal to b's tangent T: X'cosφ + Y'sinφ = Z·Z'/R.
+  double ax[8];
+  const int na = axis_crossings(k, ax);
+  for (int i = 0; i < na; ++i) {
+    const Pt p = at(k, ax[i]);
+    const double tau = std::hypot(p.X1, p.Y1);
+    const double len = std::sqrt(p.Z * p.Z + k.R * k.R);
+    if (tau <= 64 * kEps) {
+      // T along a's axis: every point of a qualifies when Q = C_a (Z = 0), none otherwise.
+      if (std::abs(p.Z) <= 64 * kEps) out.push_back({wrap_pi(ax[i]), a.center + a.radius * a.u, len / sigma});
+      continue;
+    }
+    const double ratio = p.Z * p.Z1 / (k.R * tau);
+    if (std::abs(ratio) > 1 + 64 * kEps) continue;
+    const double psi0 = std::atan2(p.Y1, p.X1), w = std::acos(std::clamp(ratio, -1.0, 1.0));
+    for (double phi_a : {psi0 + w, psi0 - w}) {
+      const Vec3 dir = std::cos(phi_a) * a.u + std::sin(phi_a) * a.v;
+      out.push_back({wrap_pi(ax[i]), a.center + a.radius * dir, len / sigma});
+    }
+  }
+  // One entry per line: roots found twice (both charts, both Φ candidates of a
+  // double root) polish to the same θ and the same point of a.
+  std::sort(out.begin(), out.end(), [](const Line& x, const Line& y) { return x.th < y.th; });
+  std::vector<Line> uniq;
+  const double same_th = 1e-9;  // radians: below what a polished simple root can drift
+  for (const Line& l : out) {
+    bool dup = false;
+    for (const Line& u : uniq)
+      if (std::abs(wrap_pi(l.th - u.th)) <= same_th && (l.on_a - u.on_a).norm() <= 1e-9 * (a.radius + 1e-300)) dup = true;
+    if (!dup) uniq.push_back(l);
+  }
+  (void)b;
+  return uniq;
+}
+
+std::vector<CircleBinormal> to_public(const CircleFrame& b, const std::vector<Line>& lines) {
+  std::vector<CircleBinormal> v;
+  v.reserve(lines.size());
+  for (const Line& l : lines) v.push_back({l.on_a, on_b(b, l.th), l.dist});
+  return v;
+}
+
+}  // namespace
+
+std::vector<CircleBinormal> circle3_circle3_binormal_lines(const Circle3& a, const Circle3& b,
+                                                           bool* infinitely_many) {
+  bool inf = false;
+  const auto lines = all_lines(a, b, &inf);
+  if (infinitely_many) *infinitely_many = inf;
+  return to_public(make_frame(b), lines);
+}
+
+std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Circle3& b,
+                                                      bool* infinitely_many) {
+  bool inf = false;
+  const auto lines = all_lines(a, b, &inf);
+  if (infinitely_many) *infinitely_many = inf;
+  // One line per distinct point Q of b (lines come sorted by θ; the seam at ±π
+  // is checked against the first).
+  std::vector<Line> per_q;
+  const double same_th = 1e-9;
+  for (const Line& l : lines) {
+    auto it = std::find_if(per_q.begin(), per_q.end(),
+                           [&](const Line& u) { return std::abs(wrap_pi(l.th - u.th)) <= same_th; });
+    if (it == per_q.end()) per_q.push_back(l);
+    else if (l.dist < it->dist) *it = l;
+  }
+  return to_public(make_frame(b), per_q);
+}
+
+}  // namespace revdist

@@ -1,0 +1,288 @@
+// Tests of fast/circle_distance: random pairs and every named degenerate
+// configuration against closed forms and the long-double reference, witnesses,
+// and metamorphic checks (swap, power-of-two scale, rigid motion).
+// Seed: REVDIST_SEED (printed).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "fast/circle_distance.h"
+#include "tests/fast/circle_test_util.h"
+
+namespace revdist {
+namespace {
+
+using namespace testing_circles;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+struct Case {
+  Circle3 a, b;
+  double expected = kNaN;  // closed form (before the rigid motion's rounding), NaN if none
+  int infinite = -1;       // 1/0 when the status is known, -1 when not asserted
+};
+
+Circle3 circle(const Vec3& c, const Vec3& n, double r) { return {c, n, r}; }
+
+Case moved(Case k, Rng& rng, double translation = 1) {
+  const Motion m = random_motion(rng, translation);
+  k.a = m.apply(k.a);
+  k.b = m.apply(k.b);
+  return k;
+}
+
+double coplanar_distance(double c, double ra, double rb) {
+  return std::max({0.0, c - ra - rb, std::abs(ra - rb) - c});
+}
+
+using Maker = std::function<Case(Rng&, int)>;
+
+struct Family {
+  std::string name;
+  Maker make;
+  double tol;  // relative to scale
+};
+
+std::vector<Family> families() {
+  const double gen = 1e-13, deg = 1e-10;
+  return {
+      {"random", [](Rng& r, int) {
+         return Case{circle(r.box(1), r.unit(), r.uniform(0.05, 1)), circle(r.box(1), r.unit(), r.uniform(0.05, 1))};
+       }, gen},
+      {"coaxial", [](Rng& r, int i) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), h = i % 4 == 0 ? 0.0 : r.uniform(-1, 1);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3(0, 0, h), Vec3(0, 0, i % 2 ? 1.0 : -2.5), rb),
+                       std::hypot(ra - rb, h), -1}, r);
+       }, deg},
+      {"coaxial_exact", [](Rng& r, int i) {  // unmoved: exactly coaxial in double
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), h = i % 4 == 0 ? 0.0 : r.uniform(-1, 1);
+         return Case{circle(Vec3(1, 2, 3), Vec3(0, 0, 3), ra), circle(Vec3(1, 2, 3 + h), Vec3(0, 0, i % 2 ? 1e-200 : -1e200), rb),
+                     std::hypot(ra - rb, h), 1};
+       }, deg},
+      {"concentric_tilted", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), t = r.uniform(0.05, kPi / 2);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3::Zero(), Vec3(std::sin(t), 0, std::cos(t)), rb),
+                       std::abs(ra - rb), 0}, r);
+       }, deg},
+      {"parallel_planes", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), h = r.uniform(-1, 1), c = r.uniform(0.01, 2.5);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3(c, 0, h), Vec3(0, 0, -1), rb),
+                       std::hypot(h, coplanar_distance(c, ra, rb)), 0}, r);
+       }, deg},
+      {"coplanar", [](Rng& r, int i) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1);
+         const double c = i % 5 == 0 ? ra + rb : r.uniform(0.01, 2.5);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3(c, 0, 0), Vec3::UnitZ(), rb),
+                       coplanar_distance(c, ra, rb), 0}, r);
+       }, deg},
+      {"through_axis", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1);
+         const Vec3 on_axis(0, 0, r.uniform(-1, 1)), nb = r.unit(), dir = r.perpendicular(nb);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(on_axis + rb * dir, nb, rb)}, r);
+       }, deg},
+      {"centre_on_circle", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), phi = r.uniform(0, 2 * kPi);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra),
+                       circle(Vec3(ra * std::cos(phi), ra * std::sin(phi), 0), r.unit(), rb)}, r);
+       }, deg},
+      {"villarceau", [](Rng& r, int i) {
+         const double R = r.uniform(0.5, 1), rr = r.uniform(0.05, 0.45) * R, s = rr / R, c = std::sqrt(1 - s * s);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), R), circle(Vec3(0, (i % 2 ? 1 : -1) * rr, 0), Vec3(-s, 0, c), R),
+                       rr, -1}, r);
+       }, deg},
+      {"meridian", [](Rng& r, int i) {
+         const double R = r.uniform(0.3, 1);
+         const double rb = i % 2 ? r.uniform(0.05, 1.0) * R : r.uniform(1.05, 3.0) * R;
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), R), circle(Vec3(R, 0, 0), Vec3::UnitY(), rb),
+                       rb <= R ? rb : std::abs(rb - 2 * R), rb <= R ? -1 : 0}, r);
+       }, deg},
+      {"meridian_barely_past_axis", [](Rng& r, int i) {  // the far arc is tiny: 1e-2 ... 1e-8 past
+         const double R = r.uniform(0.3, 1), rb = R * (1 + std::pow(10.0, -2 - i % 7));
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), R), circle(Vec3(R, 0, 0), Vec3::UnitY(), rb),
+                       std::abs(rb - 2 * R), 0}, r);
+       }, deg},
+      {"mirror_symmetric", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), t = r.uniform(0, kPi);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra),
+                       circle(Vec3(r.uniform(-1.5, 1.5), 0, r.uniform(-1, 1)), Vec3(std::sin(t), 0, std::cos(t)), rb)}, r);
+       }, deg},
+      {"intersecting", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), phi = r.uniform(0, 2 * kPi);
+         const Vec3 p(ra * std::cos(phi), ra * std::sin(phi), 0), nb = r.unit();
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(p + rb * r.perpendicular(nb), nb, rb), 0.0, 0}, r);
+       }, deg},
+      {"tangent_3d", [](Rng& r, int) {  // touching at one point, planes at an angle, b outside a's disc
+         const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), t = r.uniform(0.1, 3.0);
+         const Vec3 tb(-std::cos(t), 0, std::sin(t));  // b's radius direction at the contact, normal to a's tangent
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3(ra, 0, 0) - rb * tb, Vec3::UnitY(), rb), 0.0}, r);
+       }, deg},
+      {"tilt_ladder", [](Rng& r, int i) {
+         const double t = std::pow(10.0, -3 - (i % 10)), ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1);
+         Circle3 b = i % 2 == 0 ? circle(Vec3(t * r.uniform(-1, 1), 0, r.uniform(-1, 1)), Vec3(std::sin(t), 0, std::cos(t)), rb)
+                                : circle(Vec3(r.uniform(0.01, 2), 0, t * r.uniform(-1, 1)), Vec3(0, std::sin(t), std::cos(t)), rb);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), b}, r);
+       }, deg},
+      {"scaled", [](Rng& r, int i) {
+         const double s = std::pow(10.0, -6 + (i % 13));
+         return Case{circle(s * r.box(1), r.unit(), s * r.uniform(0.05, 1)), circle(s * r.box(1), r.unit(), s * r.uniform(0.05, 1))};
+       }, gen},
+      {"far_from_origin", [](Rng& r, int) {
+         const Vec3 far = 1e6 * r.unit();
+         return Case{circle(far + r.box(1), r.unit(), r.uniform(0.05, 1)), circle(far + r.box(1), r.unit(), r.uniform(0.05, 1))};
+       }, deg},
+      {"radius_ratio", [](Rng& r, int i) {
+         const double small = std::pow(10.0, -2 - (i % 5));
+         return Case{circle(r.box(1), r.unit(), i % 2 ? 1.0 : small), circle(r.box(1), r.unit(), i % 2 ? small : 1.0)};
+       }, deg},
+      {"point_circle", [](Rng& r, int i) {
+         const double ra = r.uniform(0.1, 1), h = r.uniform(-1, 1), rho = i % 4 == 0 ? 0.0 : r.uniform(0, 2);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra), circle(Vec3(rho, 0, h), r.unit(), 0.0), std::hypot(h, rho - ra),
+                       rho == 0 ? -1 : 0}, r);
+       }, deg},
+      {"point_on_axis_exact", [](Rng& r, int) {
+         const double ra = r.uniform(0.1, 1), h = r.uniform(-1, 1);
+         return Case{circle(Vec3(0.5, 0.25, 1), Vec3(0, 3, 0), ra), circle(Vec3(0.5, 0.25 + h, 1), r.unit(), 0.0),
+                     std::hypot(h, ra), 1};
+       }, deg},
+      {"points", [](Rng& r, int) {
+         const Vec3 p = r.box(1), q = r.box(1);
+         return Case{circle(p, r.unit(), 0.0), circle(q, r.unit(), 0.0), (p - q).norm(), 0};
+       }, deg},
+  };
+}
+
+class CircleDistanceFamily : public ::testing::TestWithParam<Family> {};
+
+TEST_P(CircleDistanceFamily, MatchesClosedFormOrReference) {
+  const Family& fam = GetParam();
+  Rng rng(test_seed() ^ std::hash<std::string>()(fam.name));
+  const int n = fam.name == "random" ? 3000 : 300;
+  double worst = 0;
+  for (int i = 0; i < n; ++i) {
+    const Case k = fam.make(rng, i);
+    const double scale = pair_scale(k.a, k.b);
+    const auto r = circle3_circle3_distance(k.a, k.b);
+    // The closed form holds before the motion is rounded; the rounding moves the
+    // circles by a few ulps of the coordinates (<= 2 here), hence the reference too.
+    const double ref = std::isnan(k.expected) ? ref_distance(k.a, k.b) : k.expected;
+    const double err = std::abs(r.distance - ref) / scale;
+    worst = std::max(worst, err);
+    ASSERT_LE(err, fam.tol) << fam.name << " #" << i << ": fast " << r.distance << " ref " << ref << " scale " << scale;
+    // Witnesses: on their circles and realising the distance. Tolerance: the
+    // points are formed in world coordinates, a few ε of the coordinates.
+    const double wtol = 64 * kEps * (scale + k.a.center.norm() + k.b.center.norm());
+    EXPECT_LE(ref_point_circle(r.point_a, k.a), wtol) << fam.name << " #" << i;
+    EXPECT_LE(ref_point_circle(r.point_b, k.b), wtol) << fam.name << " #" << i;
+    EXPECT_NEAR((r.point_a - r.point_b).norm(), r.distance, wtol + fam.tol * scale) << fam.name << " #" << i;
+    if (k.infinite >= 0)
+      EXPECT_EQ(r.status == CircleCircleStatus::infinitely_many, k.infinite == 1) << fam.name << " #" << i;
+    EXPECT_EQ(r.binormals, r.status == CircleCircleStatus::infinitely_many ? -1 : 0);
+  }
+  std::printf("%s: worst |fast - ref| / scale = %.3g over %d pairs\n", fam.name.c_str(), worst, n);
+}
+
+INSTANTIATE_TEST_SUITE_P(Families, CircleDistanceFamily, ::testing::ValuesIn(families()),
+                         [](const ::testing::TestParamInfo<Family>& info) { return info.param.name; });
+
+// Metamorphic checks over every family.
+TEST(CircleDistanceMetamorphic, SwapIsBitIdentical) {
+  Rng rng(test_seed());
+  for (const Family& fam : families())
+    for (int i = 0; i < 100; ++i) {
+      const Case k = fam.make(rng, i);
+      const auto ab = circle3_circle3_distance(k.a, k.b), ba = circle3_circle3_distance(k.b, k.a);
+      // Bit-identical by construction: the kernel orders its arguments canonically.
+      ASSERT_EQ(ab.distance, ba.distance) << fam.name << " #" << i;
+      EXPECT_EQ(ab.point_a, ba.point_b);
+      EXPECT_EQ(ab.point_b, ba.point_a);
+      EXPECT_EQ(ab.status, ba.status);
+    }
+}
+
+TEST(CircleDistanceMetamorphic, PowerOfTwoScaleIsExact) {
+  Rng rng(test_seed() + 1);
+  for (const Family& fam : families())
+    for (int i = 0; i < 100; ++i) {
+      const Case k = fam.make(rng, i);
+      const auto r = circle3_circle3_distance(k.a, k.b);
+      for (int e : {-40, -3, 1, 7, 60}) {
+        const double s = std::ldexp(1.0, e);
+        const Circle3 a{k.a.center * s, k.a.normal, k.a.radius * s}, b{k.b.center * s, k.b.normal, k.b.radius * s};
+        const auto rs = circle3_circle3_distance(a, b);
+        // Exact: lengths are normalised by a power of two inside, so every rounding repeats.
+        ASSERT_EQ(rs.distance, r.distance * s) << fam.name << " #" << i << " 2^" << e;
+        EXPECT_EQ(rs.point_a, r.point_a * s);
+        EXPECT_EQ(rs.status, r.status);
+      }
+    }
+}
+
+TEST(CircleDistanceMetamorphic, RigidMotionsAgree) {
+  Rng rng(test_seed() + 2);
+  for (const Family& fam : families())
+    for (int i = 0; i < 100; ++i) {
+      const Case k = fam.make(rng, i);
+      const double scale = pair_scale(k.a, k.b);
+      const auto r = circle3_circle3_distance(k.a, k.b);
+      // Several world frames, one a near-identity rotation.
+      for (int m = 0; m < 3; ++m) {
+        Motion mo = random_motion(rng, m == 2 ? 1e3 : 1.0);
+        if (m == 0) mo.R = Eigen::AngleAxisd(1e-9, rng.unit()).toRotationMatrix();
+        const Circle3 a = mo.apply(k.a), b = mo.apply(k.b);
+        const auto rm = circle3_circle3_distance(a, b);
+        // Moving rounds the inputs by ~ε·(|centre| + translation); the distance
+        // is 1-Lipschitz in them, and the degenerate families amplify nothing here.
+        const double tol = fam.tol * scale + 64 * kEps * (scale + mo.t.norm() + k.a.center.norm() + k.b.center.norm());
+        ASSERT_NEAR(rm.distance, r.distance, tol) << fam.name << " #" << i << " motion " << m;
+      }
+    }
+}
+
+// A hand-checked pair: circle through the other's axis, the cusp is a maximum.
+TEST(CircleDistanceNamed, CuspIsNeverTheMinimum) {
+  const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0};
+  // b in the plane x = 0 through (0,0,0.5) on a's axis: closest point is (0, ±1, 0)-ish.
+  const Circle3 b{Vec3(0, 0.5, 0.5), Vec3::UnitX(), std::sqrt(0.5)};
+  const auto r = circle3_circle3_distance(a, b);
+  EXPECT_NEAR(r.distance, ref_distance(a, b), 1e-15);
+  EXPECT_EQ(r.status, CircleCircleStatus::ok);
+}
+
+TEST(CircleDistanceNamed, MeridianPastTheAxisIsNotConstant) {
+  const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0};
+  const Circle3 b{Vec3(1, 0, 0), Vec3::UnitY(), 3.0};  // r_b > 2R: min r_b - 2R = 1
+  const auto r = circle3_circle3_distance(a, b);
+  EXPECT_NEAR(r.distance, 1.0, 4 * kEps);
+  EXPECT_EQ(r.status, CircleCircleStatus::ok);
+  EXPECT_NEAR(r.point_b[0], -2.0, 1e-7);
+}
+
+TEST(CircleDistanceNamed, MeridianInsideTheTubeIsEquidistant) {
+  const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0};
+  const Circle3 b{Vec3(1, 0, 0), Vec3::UnitY(), 0.25};
+  const auto r = circle3_circle3_distance(a, b);
+  EXPECT_NEAR(r.distance, 0.25, 4 * kEps);
+  EXPECT_EQ(r.status, CircleCircleStatus::infinitely_many);
+  EXPECT_EQ(circle3_circle3_distance(b, a).status, CircleCircleStatus::infinitely_many);
+}
+
+TEST(CircleDistanceNamed, TinyAndHugeNormals) {
+  const Circle3 a{Vec3::Zero(), Vec3(0, 0, 1e-300), 1.0}, b{Vec3(2, 0, 0), Vec3(1e300, 0, 0), 1.0};
+  const Circle3 a1{Vec3::Zero(), Vec3::UnitZ(), 1.0}, b1{Vec3(2, 0, 0), Vec3::UnitX(), 1.0};
+  EXPECT_EQ(circle3_circle3_distance(a, b).distance, circle3_circle3_distance(a1, b1).distance);
+}
+
+TEST(CircleDistanceNamed, BothPointsSame) {
+  const Circle3 a{Vec3(1, 2, 3), Vec3::UnitZ(), 0.0};
+  const auto r = circle3_circle3_distance(a, a);
+  EXPECT_EQ(r.distance, 0.0);
+  EXPECT_EQ(r.status, CircleCircleStatus::ok);
+}
+
+}  // namespace
+}  // namespace revdist
