@@ -7,6 +7,7 @@
 #include "exact/circle_distance_exact.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -19,6 +20,15 @@ namespace revdist {
 namespace {
 
 using namespace exact_detail;
+
+#ifdef REVDIST_EXACT_PROFILE
+struct Prof { const char* name; double ms = 0; ~Prof() { std::fprintf(stderr, "%s %.1f ms\n", name, ms); } };
+struct ProfScope { Prof& p; std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  ~ProfScope() { p.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); } };
+#define PROF(name) static Prof prof_##name{#name}; ProfScope prof_scope_##name{prof_##name}
+#else
+#define PROF(name)
+#endif
 
 constexpr int kGuardBits = 32;   // extra MPFI bits over the x-approximation
 constexpr int kStartBits = 112;  // first attempt: enough for 1e-30 on benign inputs
@@ -246,6 +256,135 @@ ExactCircleResult point_circle(const Circle3& a, const Circle3& b, double target
 
 void swap_sides(ExactCircleResult& r) { std::swap(r.point_a, r.point_b); }
 
+// ------------------------------------------------------------ filtered signs
+
+int xshift_for(const PairFrame& f) {
+  // x ranges over ±r_b/|u|; approximate it to bits relative to that range.
+  const double xr = f.rb.get_d() / std::sqrt(f.alpha.get_d());
+  int e = 0;
+  std::frexp(xr, &e);
+  return -e;
+}
+
+Iv eval_bipoly(const BiPoly& p, const Iv& X, const Iv& Y) {
+  const mpfr_prec_t pr = X.prec();
+  Iv acc(pr, mpq_class(0));
+  for (int j = kMaxDeg; j >= 0; --j) {
+    Iv row(pr, mpq_class(0));
+    for (int i = kMaxDeg - j; i >= 0; --i) row = row * X + Iv(pr, p.c[i][j]);
+    acc = acc * Y + row;
+  }
+  return acc;
+}
+
+int iv_sign(const Iv& v) {
+  if (mpfi_is_strictly_pos(v.get())) return 1;
+  if (mpfi_is_strictly_neg(v.get())) return -1;
+  return 0;  // undecided
+}
+
+// An enclosure of a real algebraic number of absolute width <= 2^-abs_bits:
+// interval Newton on its square-free defining polynomial inside CGAL's
+// isolating interval (quadratic, where CGAL's own refinement bisects), with
+// bisection while p' may vanish and CGAL's refinement as the last resort.
+Iv x_enclosure(const Real1& x, int abs_bits) {
+  static const AK ak;
+  const mpfr_prec_t prec = std::max(abs_bits, 0) + 64;
+  if (x.is_rational()) return Iv(prec, mpq_class(x.rational().mpq()));
+  const Poly1Z& poly = x.polynomial();
+  const int deg = poly.degree();
+  std::vector<mpz_class> pc(deg + 1), dc(deg);
+  for (int i = 0; i <= deg; ++i) pc[i] = mpz_class(poly[i].mpz());
+  for (int i = 1; i <= deg; ++i) dc[i - 1] = pc[i] * i;
+  auto eval_z = [prec](const std::vector<mpz_class>& c, const Iv& X) {
+    Iv acc(prec);
+    mpfi_set_si(acc.get(), 0);
+    for (int i = static_cast<int>(c.size()) - 1; i >= 0; --i) {
+      acc = acc * X;
+      mpfi_add_z(acc.get(), acc.get(), c[i].get_mpz_t());
+    }
+    return acc;
+  };
+  Iv X = iv_of_interval(prec, mpq_class(x.low().mpq()), mpq_class(x.high().mpq()));
+  mpfr_t d, m;
+  mpfr_init2(d, 64);
+  mpfr_init2(m, prec);
+  bool done = false;
+  for (int iter = 0; iter < 4 * abs_bits + 64; ++iter) {
+    mpfi_diam_abs(d, X.get());
+    if (mpfr_cmp_si_2exp(d, 1, -abs_bits) <= 0) {
+      done = true;
+      break;
+    }
+    mpfi_mid(m, X.get());
+    Iv M(prec);
+    mpfi_set_fr(M.get(), m);
+    const Iv PM = eval_z(pc, M);
+    const Iv DX = eval_z(dc, X);
+    if (!mpfi_has_zero(DX.get())) {
+      const Iv N = M - PM / DX;
+      Iv Xn(prec);
+      mpfi_intersect(Xn.get(), X.get(), N.get());
+      if (mpfi_is_empty(Xn.get())) break;
+      mpfr_t dn;
+      mpfr_init2(dn, 64);
+      mpfi_diam_abs(dn, Xn.get());
+      mpfr_mul_2si(dn, dn, 1, MPFR_RNDU);
+      const bool halved = mpfr_cmp(dn, d) <= 0;
+      mpfr_clear(dn);
+      X = Xn;
+      if (halved) continue;
+    }
+    // Bisection on the sign of p at the midpoint against the left end.
+    Iv Lx(prec);
+    mpfi_set_fr(Lx.get(), &X.get()->left);
+    const int sl = iv_sign(eval_z(pc, Lx)), sm = iv_sign(PM);
+    if (sl == 0 || sm == 0) break;
+    Iv half(prec);
+    if (sl == sm)
+      mpfi_interv_fr(half.get(), m, &X.get()->right);
+    else
+      mpfi_interv_fr(half.get(), &X.get()->left, m);
+    X = half;
+  }
+  mpfr_clear(d);
+  mpfr_clear(m);
+  if (done) return X;
+  const auto ab = ak.approximate_absolute_1_object()(x, abs_bits);
+  return iv_of_interval(prec, mpq_class(ab.first.mpq()), mpq_class(ab.second.mpq()));
+}
+
+struct Box {
+  Iv X, Y;
+};
+
+// An interval box around a point of b, x to about 2^-bits of its range.
+Box box_of(const PairFrame& f, const PointB& pt, int bits, int xshift) {
+  Iv X = x_enclosure(pt.x, bits + xshift);
+  Iv Y = y_of(f, X, pt.sigma);
+  return {X, Y};
+}
+
+// Sign of p at a point of b: intervals first, the exact test only on a tie.
+int sign_filtered(const PairFrame& f, const BiPoly& p, const PointB& pt, int xshift) {
+  for (int bits : {64, 192}) {
+    const Box b = box_of(f, pt, bits, xshift);
+    if (const int sg = iv_sign(eval_bipoly(p, b.X, b.Y))) return sg;
+  }
+  PROF(exact_sign);
+  return sign_on_b(f, p, pt);
+}
+
+int sign_s_filtered(const PairFrame& f, const Real1& x, int xshift) {
+  for (int bits : {64, 192}) {
+    const Iv X = x_enclosure(x, bits + xshift);
+    const mpfr_prec_t p = X.prec();
+    if (const int sg = iv_sign(Iv(p, f.s.c[0]) + Iv(p, f.s.c[2]) * sqr(X))) return sg;
+  }
+  PROF(exact_s);
+  return sign_of_s(f, x);
+}
+
 // ------------------------------------------------------------ candidates
 
 struct Candidate {
@@ -259,11 +398,12 @@ struct Candidate {
 
 // Encloses the distance at a candidate with the root approximated to 2^-(bits+xshift).
 void evaluate(const PairFrame& f, Candidate& c, int bits, int xshift) {
-  static const AK ak;
-  const mpfr_prec_t p = bits + kGuardBits;
-  const auto ab = ak.approximate_absolute_1_object()(c.pt.x, bits + xshift);
-  const mpq_class xl(ab.first.mpq()), xu(ab.second.mpq());
-  const Iv X = iv_of_interval(p, xl, xu);
+  PROF(evaluate);
+  const Iv X = x_enclosure(c.pt.x, bits + xshift);
+  const mpfr_prec_t p = X.prec();
+  mpq_class xl, xu;
+  mpfr_get_q(xl.get_mpq_t(), &X.get()->left);
+  mpfr_get_q(xu.get_mpq_t(), &X.get()->right);
   const Iv d = dist_enclosure(f, delta_of(f, X, y_of(f, X, c.pt.sigma)));
   c.lo = Fr(p);
   mpfi_get_left(c.lo.get(), d.get());
@@ -289,8 +429,10 @@ struct CandidateSet {
   bool h_zero = false;
 };
 
-CandidateSet find_candidates(const PairFrame& f) {
+CandidateSet find_candidates(const PairFrame& f, bool touching) {
   static const AK ak;
+  PROF(find_candidates);
+  const int xshift = xshift_for(f);
   CandidateSet cs;
   const std::vector<PointB> crossings = axis_crossings(f);
   auto add = [&](const PointB& p, bool continuum) {
@@ -307,22 +449,52 @@ CandidateSet find_candidates(const PairFrame& f) {
   const UPoly H = A * A - f.s * (B * B);
   if (!H.is_zero()) {
     std::vector<Real1> roots;
-    ak.solve_1_object()(to_integer_poly(H), false, std::back_inserter(roots));
+    {
+      PROF(solve_H);
+      ak.solve_1_object()(to_integer_poly(H), false, std::back_inserter(roots));
+    }
+    PROF(filter_roots);
     for (const Real1& x : roots) {
-      const int ss = sign_of_s(f, x);
+      const int ss = sign_s_filtered(f, x, xshift);
       if (ss < 0) continue;
-      for (int sigma : {-1, 0, 1}) {
-        if ((sigma == 0) != (ss == 0)) continue;
+      std::vector<int> sigmas;
+      if (ss == 0) {
+        sigmas.push_back(0);  // G(x, 0) = A(x) and H(x) = A(x)²: a root
+      } else {
+        // H = (A + √s B)(A − √s B): one factor is zero. A factor proven nonzero
+        // by intervals proves the other zero; only ties go to the exact test.
+        int zp = -1, zm = -1;
+        PROF(interval_G);
+        for (int bits : {64, 192}) {
+          const Box bp = box_of(f, PointB{x, 1}, bits, xshift);
+          Iv ym = neg(bp.Y);
+          const bool np = !mpfi_has_zero(eval_bipoly(f.G, bp.X, bp.Y).get());
+          const bool nm = !mpfi_has_zero(eval_bipoly(f.G, bp.X, ym).get());
+          if (np != nm) {
+            zp = np ? 0 : 1;
+            zm = nm ? 0 : 1;
+            break;
+          }
+        }
+        if (zp < 0) {
+          PROF(exact_G);
+          zp = sign_on_b(f, f.G, PointB{x, 1}) == 0;
+          zm = sign_on_b(f, f.G, PointB{x, -1}) == 0;
+        }
+        if (zp) sigmas.push_back(1);
+        if (zm) sigmas.push_back(-1);
+      }
+      for (int sigma : sigmas) {
         const PointB p{x, sigma};
-        if (sign_on_b(f, f.G, p) != 0) continue;  // the mirror of a root, not a root
-        const bool on_axis = sign_on_b(f, f.rho2num, p) == 0;
+        const bool on_axis = sign_filtered(f, f.rho2num, p, xshift) == 0;
         add(p, on_axis);
         // Binormal feet: an axis point carries one only if some Q of a sees P
         // perpendicularly to b; a contact point only through the far branch.
         if (on_axis) {
           if (sign_on_b(f, f.axis_test, p) <= 0) ++cs.binormals;
-        } else if (sign_on_b(f, f.hnum, p) == 0 && sign_on_b(f, f.sphere, p) == 0) {
-          if (sign_on_b(f, f.L, p) == 0) ++cs.binormals;
+        } else if (touching && sign_filtered(f, f.hnum, p, xshift) == 0 &&
+                   sign_filtered(f, f.sphere, p, xshift) == 0) {
+          if (sign_filtered(f, f.L, p, xshift) == 0) ++cs.binormals;
         } else {
           ++cs.binormals;
         }
@@ -365,6 +537,7 @@ CandidateSet find_candidates(const PairFrame& f) {
 // 2D test when the circles are coplanar.
 std::optional<Vec3> contact_point(const PairFrame& f, const Circle3& a, const Circle3& b) {
   static const AK ak;
+  PROF(contact);
   const mpq_class c0 = f.hnum.c[0][0], c1 = f.hnum.c[1][0], c2 = f.hnum.c[0][1];
   if (sgn(c1) == 0 && sgn(c2) == 0) {
     if (sgn(c0) != 0) return std::nullopt;  // parallel planes
@@ -393,19 +566,11 @@ std::optional<Vec3> contact_point(const PairFrame& f, const Circle3& a, const Ci
   return std::nullopt;
 }
 
-int xshift_for(const PairFrame& f) {
-  // x ranges over ±r_b/|u|; approximate it to bits relative to that range.
-  const double xr = f.rb.get_d() / std::sqrt(f.alpha.get_d());
-  int e = 0;
-  std::frexp(xr, &e);
-  return -e;
-}
-
 ExactCircleResult general_case(const Circle3& a, const Circle3& b, const PairFrame& f,
                                double target, int max_bits) {
   ExactCircleResult r;
   const std::optional<Vec3> touch = contact_point(f, a, b);
-  CandidateSet cs = find_candidates(f);
+  CandidateSet cs = find_candidates(f, touch.has_value());
   r.binormals = cs.binormals;
   if (touch) {
     set_contact(r, *touch);
@@ -482,7 +647,12 @@ ExactCircleResult compute(const Circle3& a, const Circle3& b, const ExactOptions
     return r;
   }
 
-  const PairFrame f = make_frame(a, b);
+  std::optional<PairFrame> fo;
+  {
+    PROF(make_frame);
+    fo.emplace(make_frame(a, b));
+  }
+  const PairFrame& f = *fo;
   // Coaxial (incl. concentric coplanar): √(ΔR² + h²), every pair equidistant.
   const mpq_class nxnb0 = f.n[1] * f.nb[2] - f.n[2] * f.nb[1], nxnb1 = f.n[2] * f.nb[0] - f.n[0] * f.nb[2],
                   nxnb2 = f.n[0] * f.nb[1] - f.n[1] * f.nb[0];
