@@ -1,0 +1,203 @@
+// Biarc tree construction (paper section 4.1, Algorithm 1): spirals, then a
+// balanced capsule tree over them, then per spiral a mid-parameter biarc
+// subdivision until the lens bound (fast/biarc_fit.h) is below eps.
+#include "fast/biarc_tree.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+#include "core/curve_eval.h"
+#include "fast/biarc_fit.h"
+
+namespace revdist {
+
+namespace {
+
+// Deep enough for eps ~ 1e-15 of the profile size (cubic convergence), shallow
+// enough to stop a runaway split of a span whose hypotheses cannot hold.
+constexpr int kMaxDepth = 40;
+
+struct Builder {
+  const Profile& profile;
+  double eps;
+  double slack;  // rounding allowance added to every proven bound
+  BiarcTree& tree;
+  BuildStats st;
+
+  std::int32_t alloc_pair() {
+    const auto i = static_cast<std::int32_t>(tree.nodes.size());
+    tree.nodes.resize(tree.nodes.size() + 2);
+    return i;
+  }
+
+  void set_capsule(std::int32_t node, const Capsule& c) {
+    BiarcNode& n = tree.nodes[node];
+    n.seg_a = c.a;
+    n.seg_b = c.b;
+    n.radius = c.radius;
+  }
+
+  Capsule capsule_of(std::int32_t node) const {
+    const BiarcNode& n = tree.nodes[node];
+    return Capsule{n.seg_a, n.seg_b, n.radius};
+  }
+
+  std::int32_t add_fit(const BiarcFit& f) {
+    tree.fits.push_back(f);
+    return static_cast<std::int32_t>(tree.fits.size() - 1);
+  }
+
+  void note_leaf(const BiarcFit& f) {
+    ++st.leaves;
+    st.max_error = std::max(st.max_error, f.eps);
+    st.max_depth = std::max(st.max_depth, static_cast<int>(f.depth));
+  }
+
+  // An input line or a (<= 90 degree) part of an input arc: one exact Arc2.
+  void build_exact(std::int32_t node, const SpiralSpan& s) {
+    const Piece& piece = profile.pieces[s.piece];
+    BiarcFit f;
+    f.piece = s.piece;
+    f.kind = s.kind;
+    f.u0 = s.u0;
+    f.u1 = s.u1;
+    f.arcs = 1;
+    Arc2& a = f.arc[0];
+    a.start = s.ends.p0;
+    a.tangent = s.ends.t0;
+    if (s.kind == SpanKind::line) {
+      a.length = (s.ends.p1 - s.ends.p0).norm();
+    } else {
+      const ArcGeometry g = arc_geometry(piece);
+      a.curvature = s.ends.k0;
+      a.length = g.radius * std::abs(g.sweep) * (s.u1 - s.u0);
+    }
+    f.arc[1] = Arc2{a.end(), a.end_tangent(), a.curvature, 0.0};
+    f.eps = slack;
+    Capsule c = lens_capsule(s.ends, lens_bound(s.ends));
+    c.radius += slack;
+    set_capsule(node, c);
+    tree.nodes[node].fit = add_fit(f);
+    note_leaf(f);
+  }
+
+  void build_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
+                   const SpanEnds& e, int depth) {
+    const LensBound lens = lens_bound(e);
+    const double um = 0.5 * (u0 + u1);
+    SpanEnds left, right;
+    left.p0 = e.p0;
+    left.t0 = e.t0;
+    left.k0 = e.k0;
+    left.p1 = piece_tangent(piece, um, +1, &left.t1, &left.k1);
+    right.p0 = left.p1;
+    right.t0 = left.t1;
+    right.k0 = left.k1;
+    right.p1 = e.p1;
+    right.t1 = e.t1;
+    right.k1 = e.k1;
+
+    const Biarc b = fit_curve_biarc(piece, u0, u1, e, left.p1);
+    BiarcFit f;
+    f.arc[0] = b.arc[0];
+    f.arc[1] = b.arc[1];
+    f.eps = lens.hypotheses_ok ? lens.width + slack : std::numeric_limits<double>::infinity();
+    f.u0 = u0;
+    f.u1 = u1;
+    f.piece = piece_index;
+    f.kind = SpanKind::curve;
+    f.depth = static_cast<std::uint8_t>(depth);
+    tree.nodes[node].fit = add_fit(f);
+
+    const bool leaf = (lens.hypotheses_ok && f.eps <= eps) || depth >= kMaxDepth || !(u0 < um && um < u1);
+    if (leaf) {
+      tree.nodes[node].child = -1;
+      if (lens.hypotheses_ok) {
+        Capsule c = lens_capsule(e, lens);
+        c.radius += slack;
+        set_capsule(node, c);
+        if (f.eps > eps) ++st.depth_limited;
+      } else {
+        // Nothing is proven about this part: a capsule that bounds nothing.
+        set_capsule(node, Capsule{e.p0, e.p1, std::numeric_limits<double>::infinity()});
+        ++st.unproven;
+      }
+      note_leaf(f);
+      return;
+    }
+    const std::int32_t c = alloc_pair();
+    tree.nodes[node].child = c;
+    build_curve(c, piece, piece_index, u0, um, left, depth + 1);
+    build_curve(c + 1, piece, piece_index, um, u1, right, depth + 1);
+    if (lens.hypotheses_ok) {
+      Capsule cap = lens_capsule(e, lens);
+      cap.radius += slack;
+      set_capsule(node, cap);
+    } else {
+      set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
+    }
+  }
+
+  void build_spiral(std::int32_t node, const SpiralSpan& s) {
+    if (s.kind == SpanKind::curve) {
+      build_curve(node, profile.pieces[s.piece], s.piece, s.u0, s.u1, s.ends, 0);
+    } else {
+      build_exact(node, s);
+    }
+  }
+
+  // Balanced tree over spirals [lo, hi): capsules only (AABB level of the paper).
+  void build_upper(std::int32_t node, std::size_t lo, std::size_t hi) {
+    if (hi - lo == 1) {
+      build_spiral(node, tree.spirals[lo]);
+      return;
+    }
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const std::int32_t c = alloc_pair();
+    tree.nodes[node].child = c;
+    tree.nodes[node].fit = -1;
+    build_upper(c, lo, mid);
+    build_upper(c + 1, mid, hi);
+    set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
+  }
+};
+
+}  // namespace
+
+void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats) {
+  tree.nodes.clear();
+  tree.fits.clear();
+  tree.eps = eps;
+  split_into_spirals(profile, tree.spirals);
+
+  // Rounding allowance: end points, tangents and the stored arcs each carry a
+  // few ulp of the coordinates; 64 ulp of the largest one covers the dozen
+  // operations between the input and a stored arc with room to spare.
+  double scale = 0.0;
+  for (const Piece& p : profile.pieces) {
+    for (const Vec2& q : p.points) scale = std::max({scale, std::abs(q.x()), std::abs(q.y())});
+  }
+  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, tree, BuildStats{}};
+  if (!tree.spirals.empty()) {
+    tree.nodes.resize(1);
+    b.build_upper(0, 0, tree.spirals.size());
+  }
+  tree.max_error = b.st.max_error;
+  if (stats) {
+    *stats = b.st;
+    stats->pieces = static_cast<int>(profile.pieces.size());
+    stats->spirals = static_cast<int>(tree.spirals.size());
+    stats->nodes = static_cast<int>(tree.nodes.size());
+    stats->bytes = tree.bytes();
+  }
+}
+
+BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats) {
+  BiarcTree tree;
+  rebuild_biarc_tree(profile, eps, tree, stats);
+  return tree;
+}
+
+}  // namespace revdist

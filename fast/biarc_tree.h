@@ -1,0 +1,79 @@
+// The biarc tree of a profile (paper section 4.1, Algorithm 1): a binary tree
+// over the spirals of the profile whose spiral-level subtrees subdivide each
+// spiral at the mid parameter until the proven biarc error is below eps.
+//
+// Every node carries a capsule in (r, z): a segment and a radius such that the
+// node's part of the profile lies within the radius of the segment. Rotated,
+// the segment is a truncated cone (or cylinder, or flat annulus) and the
+// capsule is its radius-neighbourhood, because a point's distance to a surface
+// of revolution is attained in its own meridian half-plane; so
+// dist(node A, node B) >= dist(cone A, cone B) - radius A - radius B.
+// Nodes at and below the spiral level also carry a biarc with its proven
+// two-sided Hausdorff bound eps (fat tori when rotated, tighter than the cone);
+// leaves are the nodes whose eps <= the requested eps.
+//
+// Storage is flat (two arrays, children adjacent, depth first, so leaves come
+// in profile order) and rebuilding into an existing tree reuses its capacity:
+// a deformable solid rebuilt at a new time allocates nothing once warmed up
+// (core/curve_eval's evaluator aside).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/arc2.h"
+#include "core/profile.h"
+#include "fast/spiral_split.h"
+
+namespace revdist {
+
+struct BiarcNode {
+  Vec2 seg_a = Vec2::Zero(), seg_b = Vec2::Zero();  // the best-fit segment (a cone when rotated)
+  double radius = 0.0;  // proven: the node's profile part is within `radius` of the segment
+  std::int32_t child = -1;  // first child; the second is child + 1; -1 for a leaf
+  std::int32_t fit = -1;    // index into BiarcTree::fits; -1 above the spiral level
+  bool leaf() const { return child < 0; }
+};
+
+// The biarc of one node at or below the spiral level, with what an audit needs
+// to certify it independently: the source piece and parameter range.
+struct BiarcFit {
+  Arc2 arc[2];             // G1 chain from C(u0) to C(u1); arc[1] has length 0 when arcs == 1
+  double eps = 0.0;        // proven two-sided Hausdorff bound (rounding slack included); +inf if unproven
+  double u0 = 0.0, u1 = 0.0;
+  std::int32_t piece = 0;
+  SpanKind kind = SpanKind::curve;
+  std::uint8_t arcs = 2;   // 1: an exact input line or arc (part), 2: a biarc
+  std::uint8_t depth = 0;  // below the spiral root
+};
+
+struct BiarcTree {
+  std::vector<BiarcNode> nodes;  // nodes[0] is the root (empty for an empty profile)
+  std::vector<BiarcFit> fits;
+  std::vector<SpiralSpan> spirals;  // the spirals the tree was built over, in chain order
+  double eps = 0.0;        // requested bound
+  double max_error = 0.0;  // max eps over the leaves (claimed, proven by the lens bound)
+
+  // Bytes of the tree proper (nodes and fits); the spiral list is build input.
+  std::size_t bytes() const { return nodes.size() * sizeof(BiarcNode) + fits.size() * sizeof(BiarcFit); }
+};
+
+struct BuildStats {
+  int pieces = 0;
+  int spirals = 0;
+  int nodes = 0;
+  int leaves = 0;
+  std::size_t bytes = 0;
+  double max_error = 0.0;  // claimed (proven) bound over the leaves
+  int max_depth = 0;       // deepest biarc subdivision below a spiral root
+  int unproven = 0;        // leaves whose spiral hypotheses failed (eps = inf); 0 expected
+  int depth_limited = 0;   // leaves that hit the depth limit before reaching eps
+};
+
+// Builds the tree of `profile` with requested error bound eps > 0.
+BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats = nullptr);
+
+// The same, into `tree`, reusing its storage (the deformable hot path).
+void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats = nullptr);
+
+}  // namespace revdist

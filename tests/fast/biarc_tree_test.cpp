@@ -1,0 +1,211 @@
+// Tests of the biarc tree (fast/biarc_tree.h): every proven eps covers the
+// dense-sampled Hausdorff distance, every capsule covers its part of the curve,
+// leaves tile the profile in order, node counts follow the cubic convergence,
+// and rebuilding reuses storage.
+#include "fast/biarc_tree.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+
+#include "tests/fast/biarc_test_util.h"
+
+namespace revdist {
+namespace {
+
+using namespace testing_util;
+
+// Checks every node of `tree` against dense samples of the curve. Returns the
+// largest ratio sampled / proven over the leaves (how tight the bound is).
+double check_tree(const Profile& profile, const BiarcTree& tree, double eps, int samples = 400) {
+  double worst_ratio = 0.0;
+  int leaves = 0;
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const BiarcNode& n = tree.nodes[i];
+    if (n.leaf()) ++leaves;
+    if (n.fit < 0) {
+      EXPECT_GE(n.child, 0) << "a node above the spiral level must be internal";
+      continue;
+    }
+    const BiarcFit& f = tree.fits[n.fit];
+    const Piece& piece = profile.pieces[f.piece];
+    EXPECT_TRUE(std::isfinite(f.eps)) << "unproven node, piece " << f.piece << " [" << f.u0 << ", " << f.u1 << "]";
+    if (!std::isfinite(f.eps)) continue;
+    // G1: arcs join with a common tangent, start and end on the curve.
+    const double tol = 1e-12 * (1.0 + f.arc[0].length + f.arc[1].length);
+    EXPECT_LT((f.arc[0].end() - f.arc[1].start).norm(), 1e-12) << "biarc not joined";
+    EXPECT_LT((f.arc[0].end_tangent() - f.arc[1].tangent).norm(), 1e-9) << "biarc not G1";
+    EXPECT_LT((f.arc[0].start - piece_point(piece, f.u0)).norm(), tol);
+    EXPECT_LT((f.arc[1].end() - piece_point(piece, f.u1)).norm(), 1e-11);
+    // The proven bound covers the sampled Hausdorff distance.
+    const double h = sampled_hausdorff(piece, f.u0, f.u1, f.arc, f.arcs, samples);
+    EXPECT_LE(h, f.eps * (1 + 1e-9) + 1e-13) << "piece " << f.piece << " [" << f.u0 << ", " << f.u1 << "]";
+    if (n.leaf()) {
+      EXPECT_LE(f.eps, eps);
+      if (f.eps > 1e-12) worst_ratio = std::max(worst_ratio, h / f.eps);
+    }
+    // The capsule covers the curve part.
+    for (int k = 0; k <= 64; ++k) {
+      const Vec2 p = piece_point(piece, f.u0 + (f.u1 - f.u0) * k / 64);
+      EXPECT_LE(point_segment_distance(p, n.seg_a, n.seg_b), n.radius * (1 + 1e-12) + 1e-14);
+    }
+  }
+  EXPECT_GT(leaves, 0);
+  return worst_ratio;
+}
+
+// Leaves in depth-first order tile each piece's parameter range without gaps.
+void check_tiling(const Profile& profile, const BiarcTree& tree) {
+  std::vector<const BiarcFit*> leaves;
+  for (const BiarcNode& n : tree.nodes) {
+    if (n.leaf()) leaves.push_back(&tree.fits[n.fit]);
+  }
+  // Depth-first order of nodes with children allocated after parents: walk it.
+  leaves.clear();
+  std::vector<std::int32_t> stack = {0};
+  while (!stack.empty()) {
+    const std::int32_t i = stack.back();
+    stack.pop_back();
+    const BiarcNode& n = tree.nodes[i];
+    if (n.leaf()) {
+      leaves.push_back(&tree.fits[n.fit]);
+    } else {
+      stack.push_back(n.child + 1);
+      stack.push_back(n.child);
+    }
+  }
+  for (std::size_t i = 0; i + 1 < leaves.size(); ++i) {
+    const BiarcFit& a = *leaves[i];
+    const BiarcFit& b = *leaves[i + 1];
+    if (a.piece == b.piece) {
+      EXPECT_EQ(a.u1, b.u0);
+    } else {
+      EXPECT_EQ(a.piece + 1, b.piece);
+      EXPECT_EQ(a.u1, piece_domain(profile.pieces[a.piece]).second);
+      EXPECT_EQ(b.u0, piece_domain(profile.pieces[b.piece]).first);
+    }
+  }
+}
+
+TEST(BiarcTree, RandomBeziersProvenBoundCoversSampledHausdorff) {
+  const std::uint64_t seed = test_seed(20240601);
+  std::printf("seed %llu (REVDIST_SEED to override)\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  double worst = 0.0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Profile profile;
+    profile.pieces.push_back(random_bezier(rng, trial % 2 == 1));
+    for (double eps : {1e-2, 1e-3, 1e-4}) {
+      BuildStats st;
+      const BiarcTree tree = build_biarc_tree(profile, eps, &st);
+      SCOPED_TRACE("trial " + std::to_string(trial) + " eps " + std::to_string(eps));
+      EXPECT_EQ(st.unproven, 0);
+      EXPECT_EQ(st.depth_limited, 0);
+      EXPECT_LE(st.max_error, eps);
+      worst = std::max(worst, check_tree(profile, tree, eps, 160));
+      check_tiling(profile, tree);
+    }
+  }
+  std::printf("worst sampled/proven ratio over leaves: %.3f\n", worst);
+}
+
+TEST(BiarcTree, RandomBsplinesProvenBoundCoversSampledHausdorff) {
+  const std::uint64_t seed = test_seed(777);
+  std::printf("seed %llu (REVDIST_SEED to override)\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  for (int trial = 0; trial < 30; ++trial) {
+    Profile profile;
+    const int degree = 2 + trial % 3;
+    profile.pieces.push_back(random_bspline(rng, degree, degree + 3 + trial % 4, trial % 2 == 1));
+    BuildStats st;
+    const BiarcTree tree = build_biarc_tree(profile, 1e-3, &st);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    EXPECT_EQ(st.unproven, 0);
+    check_tree(profile, tree, 1e-3, 160);
+    check_tiling(profile, tree);
+  }
+}
+
+TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
+  Profile can;  // a can with a domed lid: lines, and a sphere-cap arc centred on the axis
+  can.pieces.push_back(line_piece({0, 0}, {1, 0}));
+  can.pieces.push_back(line_piece({1, 0}, {1, 2}));
+  can.pieces.push_back(arc_piece({1, 2}, {std::sqrt(0.5), 2 + std::sqrt(0.5) - 0.0}, {0, 3}));
+  // The arc's middle point must be on the circle centred (0, 2) of radius 1.
+  can.pieces[2].points[1] = Vec2(std::cos(M_PI / 4), 2 + std::sin(M_PI / 4));
+  BuildStats st;
+  const BiarcTree tree = build_biarc_tree(can, 1e-6, &st);
+  EXPECT_EQ(st.spirals, 3);
+  EXPECT_EQ(st.leaves, 3);
+  EXPECT_LT(st.max_error, 1e-13);
+  for (const BiarcFit& f : tree.fits) {
+    EXPECT_EQ(f.arcs, 1);
+    if (f.kind == SpanKind::line) {
+      EXPECT_EQ(f.arc[0].curvature, 0.0);
+    } else {
+      EXPECT_NEAR(std::abs(f.arc[0].curvature), 1.0, 1e-14);
+    }
+  }
+  check_tree(can, tree, 1e-6);
+}
+
+TEST(BiarcTree, SpindleArcSplitAtExtremes) {
+  // Spindle: an arc whose centre (-1, 1) lies beyond the axis; it meets the
+  // axis at a corner. The r extreme (z = 1) splits it into two exact spans.
+  const double r = std::sqrt(2.0) * 1.0;
+  Profile spindle;
+  spindle.pieces.push_back(arc_piece({0, 0}, {r - 1, 1}, {0, 2}));
+  BuildStats st;
+  const BiarcTree tree = build_biarc_tree(spindle, 1e-4, &st);
+  EXPECT_EQ(st.spirals, 2);
+  EXPECT_EQ(st.leaves, 2);
+  check_tree(spindle, tree, 1e-4);
+}
+
+TEST(BiarcTree, NodeCountsFollowCubicConvergence) {
+  Profile p;
+  p.pieces.push_back(bezier_piece({{0, 0}, {1.2, 0.1}, {0.2, 1.0}, {0.9, 1.9}, {0, 2}}));
+  int prev = 0;
+  for (double eps : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7}) {
+    BuildStats st;
+    build_biarc_tree(p, eps, &st);
+    if (prev > 0) {
+      const double growth = static_cast<double>(st.leaves) / prev;
+      // Cubic convergence: 10^(1/3) = 2.15 per decade; leaves are integers, so allow slack.
+      EXPECT_GT(growth, 1.5) << eps;
+      EXPECT_LT(growth, 3.2) << eps;
+    }
+    prev = st.leaves;
+  }
+}
+
+TEST(BiarcTree, RebuildReusesStorageAndMatches) {
+  std::mt19937_64 rng(test_seed(5));
+  Profile p;
+  p.pieces.push_back(random_bezier(rng, true));
+  BiarcTree tree;
+  rebuild_biarc_tree(p, 1e-5, tree);
+  const auto* nodes = tree.nodes.data();
+  const auto count = tree.nodes.size();
+  rebuild_biarc_tree(p, 1e-5, tree);
+  EXPECT_EQ(tree.nodes.data(), nodes) << "rebuild reallocated";
+  EXPECT_EQ(tree.nodes.size(), count);
+}
+
+TEST(BiarcTree, EmptyAndDegenerateProfiles) {
+  Profile empty;
+  BuildStats st;
+  const BiarcTree t = build_biarc_tree(empty, 1e-3, &st);
+  EXPECT_TRUE(t.nodes.empty());
+  EXPECT_EQ(st.leaves, 0);
+  Profile point;  // a zero-length line contributes nothing
+  point.pieces.push_back(line_piece({1, 1}, {1, 1}));
+  point.pieces.push_back(line_piece({1, 1}, {0, 1}));
+  const BiarcTree t2 = build_biarc_tree(point, 1e-3, &st);
+  EXPECT_EQ(st.spirals, 1);
+  EXPECT_EQ(st.leaves, 1);
+}
+
+}  // namespace
+}  // namespace revdist
