@@ -64,8 +64,8 @@ bool polish_branch(const PairCoeffs& k, double sigma, double* th) {
     const double psi = L - sigma * k.R * Qp / rho;
     const double dpsi = L1 - sigma * k.R * (Qp1 / rho - Qp * Qp / (rho * rho * rho));
     // Size of the terms of ψ: its rounding error is a few ε times this.
-    const double mag = std::abs(p.X * p.X1) + std::abs(p.Y * p.Y1) + std::abs(p.Z * p.Z1) +
-                       k.R * (std::abs(p.X * p.X1) + std::abs(p.Y * p.Y1)) / rho;
+    const double mag = (std::abs(p.X) + std::abs(p.Y) + std::abs(p.Z)) *
+                       (std::abs(p.X1) + std::abs(p.Y1) + std::abs(p.Z1)) * (1 + k.R / rho);
     if (std::abs(psi) <= 16 * kEps * mag) {
       *th = t;
       return std::abs(wrap_pi(t - th0)) < 1e-2;
@@ -93,7 +93,7 @@ int axis_crossings(const PairCoeffs& k, double* th_out) {
   poly_mul(X, 2, Xd, 2, q);
   poly_mul(Y, 2, Yd, 2, q2);
   for (int i = 0; i <= 4; ++i) q[i] += q2[i];
-  double th[8];
+  double th[12];
   const int n = trig_poly_roots(q, 4, th);
   int m = 0;
   for (int i = 0; i < n; ++i) {
@@ -191,7 +191,7 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     *infinite = true;
     return out;
   }
-  double th[16];
+  double th[20];
   const int n = trig_poly_roots(phi, 8, th);
   for (int i = 0; i < n; ++i) {
     for (double sg : {1.0, -1.0}) {

@@ -48,6 +48,24 @@ struct Min {
   double th = 0, c = 1, s = 0, f = 0;
 };
 
+// (cos, sin) of th + d from those of th. Small steps (the Newton tail) use the
+// Taylor series, exact to rounding for |d| < 1e-2 (next terms d^7/5040, d^8/40320
+// are below ε·d and ε), instead of a libm call.
+inline void turn(double d, double* c, double* s) {
+  double cd, sd;
+  if (std::abs(d) < 1e-2) {
+    const double d2 = d * d;
+    sd = d * (1 - d2 / 6 * (1 - d2 / 20 * (1 - d2 / 42)));
+    cd = 1 - d2 / 2 * (1 - d2 / 12 * (1 - d2 / 30));
+  } else {
+    sd = std::sin(d);
+    cd = std::cos(d);
+  }
+  const double cn = *c * cd - *s * sd;
+  *s = *s * cd + *c * sd;
+  *c = cn;
+}
+
 // Local minimum of f from th: Newton where f'' > 0, a guarded descent step
 // elsewhere (near q's axis f has a cusp with f'' -> -inf), each non-Newton step
 // checked to decrease f.
@@ -63,17 +81,18 @@ Min descend(const PairCoeffs& k, double th) {
       // Inside the convex basin Newton converges quadratically: take the step unchecked
       // (a check would stall on rounding noise in f once |step| ~ sqrt(ε)).
       th += step;
-      c = std::cos(th);
-      s = std::sin(th);
-      if (std::abs(step) < 1e-11) break;  // the next error is ~ step^2: below ε
+      turn(step, &c, &s);
+      // The next error is ~step^2. Stop when that is below ε, or (away from
+      // contact, f > 1e-10) when f's error f''·step^4 is far below ε·f.
+      if (std::abs(step) < 1e-11 || (std::abs(step) < 1e-7 && d.f > 1e-10)) break;
       continue;
     }
-    double tn = th, cn = c, sn = s, fn = d.f;
+    double cn = c, sn = s, fn = d.f;
     bool ok = false;
     for (int tries = 0; tries < 40; ++tries, step *= 0.5) {
-      tn = th + step;
-      cn = std::cos(tn);
-      sn = std::sin(tn);
+      cn = c;
+      sn = s;
+      turn(step, &cn, &sn);
       fn = sq_dist(k, cn, sn);
       if (fn < d.f || (newton && fn == d.f)) {
         ok = true;
@@ -81,10 +100,9 @@ Min descend(const PairCoeffs& k, double th) {
       }
     }
     if (!ok) break;  // no descent direction left: a local minimum within rounding
-    th = tn;
+    th += step;
     c = cn;
     s = sn;
-    (void)fn;
   }
   Min m;
   m.th = th;
@@ -269,8 +287,14 @@ Generic solve_generic(const PairCoeffs& k) {
     fs[i] = sq_dist(k, tab[2 * i], tab[2 * i + 1]);
     if (fs[i] < fs[best]) best = i;
   }
+  // Start at the vertex of the parabola through the best sample and its
+  // neighbours (clamped to their span): it saves Newton steps.
+  const double fl = fs[(best + kSamples - 1) % kSamples], fr = fs[(best + 1) % kSamples];
+  const double curv = fl - 2 * fs[best] + fr;
+  double off = curv > 0 ? 0.5 * (fl - fr) / curv : 0.0;
+  off = std::clamp(off, -1.0, 1.0);
   Generic g;
-  g.min = descend(k, 2 * kPi * best / kSamples);
+  g.min = descend(k, 2 * kPi * (best + off) / kSamples);
   Min& cur = g.min;
   vranek_rounds(k, &cur);
   // Below a distance of 1e-3 (scaled) the quartic resolves f only to ~1e-13,

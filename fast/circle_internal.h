@@ -173,8 +173,8 @@ int poly_roots_in(const double* a, int n, double lo, double hi, double tol_abs, 
 // a[0..n] (t = tan(θ/2), n <= 8, the polynomial times (1+t^2)^(n/2)) over the
 // whole circle: the chart t in [-1, 1] for |θ| <= π/2 and the chart turned by π
 // (t' = -1/t) for the rest, so no root is lost at infinity. Touching roots are
-// kept when |p| at a local extremum is within 32nε·Σ|a_i|. Roots on the seam
-// may appear twice. th must hold 2n entries.
+// kept when |p| at a local extremum is within 64nε·Σ|a_i|. The charts overlap,
+// so roots near the seam may appear twice. th must hold 2n entries.
 int trig_poly_roots(const double* a, int n, double* th);
 
 inline double wrap_pi(double x) {

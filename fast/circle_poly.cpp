@@ -74,13 +74,16 @@ int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_ab
 int trig_poly_roots(const double* a, int n, double* th) {
   double mag = 0;
   for (int i = 0; i <= n; ++i) mag += std::abs(a[i]);
-  const double tol = 32 * n * kEps * mag;  // Horner on |t| <= 1: error <= 2nε·Σ|a_i|, with margin
-  double r[8], b[9];
+  const double tol = 64 * n * kEps * mag;  // Horner on |t| <= 1.25: error <= 2nε·1.25^n·Σ|a_i|, with margin
+  double r[10], b[9];
   int k = 0;
-  const int n1 = poly_roots_in(a, n, -1, 1, tol, r);
+  // The charts overlap (|t| <= 1.25) so a touching root on the seam |t| = 1 is an
+  // interior extremum of one of them; the overlap's duplicates are merged by callers.
+  const double lim = 1.25;
+  const int n1 = poly_roots_in(a, n, -lim, lim, tol, r);
   for (int i = 0; i < n1; ++i) th[k++] = 2 * std::atan(r[i]);
   for (int j = 0; j <= n; ++j) b[j] = ((n - j) % 2 ? -1 : 1) * a[n - j];  // p(-1/t') t'^n
-  const int n2 = poly_roots_in(b, n, -1, 1, tol, r);
+  const int n2 = poly_roots_in(b, n, -lim, lim, tol, r);
   for (int i = 0; i < n2; ++i) th[k++] = wrap_pi(2 * std::atan(r[i]) + kPi);
   return k;
 }
