@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace revdist {
 namespace {
@@ -110,10 +112,19 @@ long double brute_force(const Circle3& a, const Circle3& b) {
   };
   const int N = 4096;
   const long double step = 2 * M_PIl / N;
-  long double best = INFINITY;
+  std::vector<long double> samples(N);
+  for (int i = 0; i < N; ++i) samples[i] = dist(i * step);
+  // Polish the 8 smallest sampled local minima (plateaus count once).
+  std::vector<std::pair<long double, int>> minima;
   for (int i = 0; i < N; ++i) {
-    const long double d0 = dist(i * step);
-    if (d0 > dist((i - 1) * step) || d0 > dist((i + 1) * step)) continue;
+    const long double d0 = samples[i];
+    if (d0 <= samples[(i + N - 1) % N] && d0 < samples[(i + 1) % N]) minima.push_back({d0, i});
+  }
+  if (minima.empty()) minima.push_back({samples[0], 0});
+  std::sort(minima.begin(), minima.end());
+  if (minima.size() > 8) minima.resize(8);
+  long double best = INFINITY;
+  for (const auto& [d0, i] : minima) {
     long double lo = (i - 1) * step, hi = (i + 1) * step;  // golden section on the bracket
     const long double g = (std::sqrt(5.0L) - 1) / 2;
     long double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
@@ -359,6 +370,73 @@ TEST(CircleDistanceExact, RandomAgainstBruteForceAndSwap) {
     EXPECT_LE(r.binormals, 8);
   }
   std::printf("mean time per certified distance: %.3f ms over %d calls\n", total_ms / calls, calls);
+}
+
+// Small-integer pairs hit the exact degenerate paths often: contact, axis
+// crossings, H ≡ 0, parallel and perpendicular planes, shared centres.
+TEST(CircleDistanceExact, IntegerPairsAgainstBruteForce) {
+  const unsigned seed = seed_from_env();
+  std::printf("REVDIST_SEED=%u\n", seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_int_distribution<int> c(-2, 2), nn(-1, 1), rr(0, 3);
+  int contacts = 0, many = 0;
+  for (int i = 0; i < 400; ++i) {
+    SCOPED_TRACE(i);
+    auto circle = [&] {
+      Vec3 n;
+      do n = Vec3(nn(rng), nn(rng), nn(rng)); while (n.isZero(0));
+      return C({double(c(rng)), double(c(rng)), double(c(rng))}, n, rr(rng) == 0 ? 0.0 : double(rr(rng)));
+    };
+    const Circle3 a = circle(), b = circle();
+    const auto r = circle3_circle3_distance_exact(a, b);
+    const auto s = circle3_circle3_distance_exact(b, a);
+    ASSERT_NE(r.status, ExactStatus::not_certified) << r.reason;
+    ASSERT_NE(s.status, ExactStatus::not_certified) << s.reason;
+    EXPECT_EQ(r.contact, s.contact);
+    EXPECT_EQ(r.status, s.status);
+    EXPECT_LE(r.lower, s.upper);
+    EXPECT_LE(s.lower, r.upper);
+    contacts += r.contact;
+    many += r.status == ExactStatus::infinitely_many;
+    const double bf = static_cast<double>(std::min(
+        a.radius > 0 ? brute_force(a, b) : brute_force(b, a), b.radius > 0 ? brute_force(b, a) : brute_force(a, b)));
+    if (r.contact) {
+      EXPECT_LT(bf, 1e-6);
+      continue;
+    }
+    EXPECT_LE(r.lower, bf * (1 + 1e-15));
+    EXPECT_NEAR(r.upper, bf, 1e-9);
+    EXPECT_LE(r.width, kRelWidth * scale_of(a, b));
+  }
+  std::printf("contacts %d, infinitely_many %d of 400\n", contacts, many);
+}
+
+// Near-degenerate: tilt ε away from coaxial, Villarceau and meridian pairs.
+TEST(CircleDistanceExact, NearDegenerate) {
+  const Circle3 core = C({0, 0, 0}, {0, 0, 1}, 5);
+  for (double eps : {1e-3, 1e-8, 1e-13}) {
+    SCOPED_TRACE(eps);
+    const Circle3 pairs[][2] = {
+        {C({0, 0, 0}, {0, 0, 2}, 1), C({eps, 0, 4}, {0, 0, -1}, 4)},
+        {C({0, 0, 0}, {0, 0, 2}, 1), C({0, 0, 4}, {eps, 0, -1}, 4)},
+        {core, C({0, 3, 0}, {3, eps, -4}, 5)},
+        {core, C({0, 3 + eps, 0}, {3, 0, -4}, 5)},
+        {C({0, 0, 0}, {0, 0, 1}, 1), C({1, 0, 0}, {eps, 1, 0}, 3)},
+        {C({0, 0, 0}, {0, 0, 1}, 1), C({1, eps, 0}, {0, 1, 0}, 1)},
+        {C({0, 0, 0}, {0, 0, 1}, 1), C({2 + eps, 0, 0}, {0, 0, 1}, 1)},
+    };
+    for (const auto& p : pairs) {
+      const auto r = circle3_circle3_distance_exact(p[0], p[1]);
+      const auto s = circle3_circle3_distance_exact(p[1], p[0]);
+      ASSERT_NE(r.status, ExactStatus::not_certified) << r.reason;
+      const double bf = static_cast<double>(std::min(brute_force(p[0], p[1]), brute_force(p[1], p[0])));
+      EXPECT_LE(r.lower, bf * (1 + 1e-15));
+      EXPECT_NEAR(r.upper, bf, 1e-9);
+      EXPECT_LE(r.width, kRelWidth * scale_of(p[0], p[1]));
+      EXPECT_LE(r.lower, s.upper);
+      EXPECT_LE(s.lower, r.upper);
+    }
+  }
 }
 
 }  // namespace
