@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   CLI::App app{"revdist: minimum distance between solids of revolution, fast and provably right"};
   app.require_subcommand(1);
   revdist::cli::add_circles_command(app);
+  revdist::cli::add_fit_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
