@@ -249,7 +249,7 @@ std::vector<PointB> points_on_line(const PairFrame& f, const mpq_class& c0, cons
   return out;
 }
 
-std::vector<PointB> axis_crossings(const PairFrame& f) {
+std::vector<PointB> axis_crossings(const PairFrame& f, const SignOnB& sign) {
   std::vector<PointB> out;
   if (sgn(f.Ra) == 0) return out;  // a point has no axis worth naming
   // n × Δ = 0: three lines in (x, y); take one that is not degenerate and filter.
@@ -262,7 +262,7 @@ std::vector<PointB> axis_crossings(const PairFrame& f) {
     }
   if (best < 0) return out;
   for (const PointB& p : points_on_line(f, nxD[best], nxu[best], nxv[best]))
-    if (sign_on_b(f, f.rho2num, p) == 0) out.push_back(p);
+    if (sign(f.rho2num, p) == 0) out.push_back(p);
   return out;
 }
 

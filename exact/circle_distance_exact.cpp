@@ -354,6 +354,37 @@ Iv x_enclosure(const Real1& x, int abs_bits) {
   return iv_of_interval(prec, mpq_class(ab.first.mpq()), mpq_class(ab.second.mpq()));
 }
 
+// A BiPoly with its coefficients converted to intervals once.
+class IvBiPoly {
+ public:
+  IvBiPoly(const BiPoly& p, mpfr_prec_t prec) {
+    for (int i = 0; i <= kMaxDeg; ++i)
+      for (int j = 0; i + j <= kMaxDeg; ++j) {
+        c_.emplace_back(prec, p.c[i][j]);
+        idx_[i][j] = static_cast<int>(c_.size()) - 1;
+      }
+  }
+  Iv eval(const Iv& X, const Iv& Y) const {
+    const mpfr_prec_t pr = X.prec();
+    Iv acc(pr, mpq_class(0));
+    for (int j = kMaxDeg; j >= 0; --j) {
+      Iv row(pr, mpq_class(0));
+      for (int i = kMaxDeg - j; i >= 0; --i) row = row * X + c_[idx_[i][j]];
+      acc = acc * Y + row;
+    }
+    return acc;
+  }
+
+ private:
+  std::vector<Iv> c_;
+  int idx_[kMaxDeg + 1][kMaxDeg + 1] = {};
+};
+
+Iv s_of(const PairFrame& f, const Iv& X) {
+  const mpfr_prec_t p = X.prec();
+  return Iv(p, f.s.c[0]) + Iv(p, f.s.c[2]) * sqr(X);
+}
+
 struct Box {
   Iv X, Y;
 };
@@ -434,7 +465,8 @@ CandidateSet find_candidates(const PairFrame& f, bool touching) {
   PROF(find_candidates);
   const int xshift = xshift_for(f);
   CandidateSet cs;
-  const std::vector<PointB> crossings = axis_crossings(f);
+  const std::vector<PointB> crossings = axis_crossings(
+      f, [&](const BiPoly& p, const PointB& pt) { return sign_filtered(f, p, pt, xshift); });
   auto add = [&](const PointB& p, bool continuum) {
     for (const Candidate& c : cs.list)
       if (same_point(c.pt, p)) return;
@@ -454,8 +486,13 @@ CandidateSet find_candidates(const PairFrame& f, bool touching) {
       ak.solve_1_object()(to_integer_poly(H), false, std::back_inserter(roots));
     }
     PROF(filter_roots);
+    // Interval versions of G and |n×Δ|², converted once per precision.
+    const IvBiPoly G64(f.G, 64 + kGuardBits), G192(f.G, 192 + kGuardBits);
+    const IvBiPoly R64(f.rho2num, 64 + kGuardBits);
     for (const Real1& x : roots) {
-      const int ss = sign_s_filtered(f, x, xshift);
+      const Iv X64 = x_enclosure(x, 64 + xshift);
+      int ss = iv_sign(s_of(f, X64));
+      if (ss == 0) ss = sign_s_filtered(f, x, xshift);
       if (ss < 0) continue;
       std::vector<int> sigmas;
       if (ss == 0) {
@@ -464,12 +501,12 @@ CandidateSet find_candidates(const PairFrame& f, bool touching) {
         // H = (A + √s B)(A − √s B): one factor is zero. A factor proven nonzero
         // by intervals proves the other zero; only ties go to the exact test.
         int zp = -1, zm = -1;
-        PROF(interval_G);
         for (int bits : {64, 192}) {
-          const Box bp = box_of(f, PointB{x, 1}, bits, xshift);
-          Iv ym = neg(bp.Y);
-          const bool np = !mpfi_has_zero(eval_bipoly(f.G, bp.X, bp.Y).get());
-          const bool nm = !mpfi_has_zero(eval_bipoly(f.G, bp.X, ym).get());
+          const Iv X = bits == 64 ? X64 : x_enclosure(x, bits + xshift);
+          const Iv Y = y_of(f, X, 1), Ym = neg(Y);
+          const IvBiPoly& G = bits == 64 ? G64 : G192;
+          const bool np = !mpfi_has_zero(G.eval(X, Y).get());
+          const bool nm = !mpfi_has_zero(G.eval(X, Ym).get());
           if (np != nm) {
             zp = np ? 0 : 1;
             zm = nm ? 0 : 1;
@@ -486,7 +523,8 @@ CandidateSet find_candidates(const PairFrame& f, bool touching) {
       }
       for (int sigma : sigmas) {
         const PointB p{x, sigma};
-        const bool on_axis = sign_filtered(f, f.rho2num, p, xshift) == 0;
+        int sr = iv_sign(R64.eval(X64, y_of(f, X64, sigma)));
+        const bool on_axis = (sr != 0 ? sr : sign_filtered(f, f.rho2num, p, xshift)) == 0;
         add(p, on_axis);
         // Binormal feet: an axis point carries one only if some Q of a sees P
         // perpendicularly to b; a contact point only through the far branch.

@@ -8,6 +8,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "core/circle3.h"
@@ -87,8 +88,10 @@ int sign_on_b(const PairFrame& f, const BiPoly& p, const PointB& pt);
 // Points of b on the line c0 + c1 x + c2 y = 0 ((c1, c2) != 0).
 std::vector<PointB> points_on_line(const PairFrame& f, const mpq_class& c0, const mpq_class& c1,
                                    const mpq_class& c2);
-// Points of b on the axis of a (at most 2).
-std::vector<PointB> axis_crossings(const PairFrame& f);
+// Points of b on the axis of a (at most 2). `sign` must be an exact sign at
+// points of b (a filtered version of sign_on_b is welcome).
+using SignOnB = std::function<int(const BiPoly&, const PointB&)>;
+std::vector<PointB> axis_crossings(const PairFrame& f, const SignOnB& sign);
 bool same_point(const PointB& p, const PointB& q);
 int sign_of_s(const PairFrame& f, const Real1& x);
 
