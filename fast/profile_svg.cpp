@@ -79,7 +79,7 @@ std::string profile_svg(const std::string& title, const Profile& profile, const 
   rmin = std::min(rmin, 0.0);  // always show the axis
   const double span = std::max({rmax - rmin, zmax - zmin, 1e-300});
   const View v{rmin, zmax, kCanvas / span};
-  const double width = 2 * kMargin + (rmax - rmin) * v.s;
+  const double width = std::max(2 * kMargin + (rmax - rmin) * v.s, 900.0);  // room for the legend
   const double height = 2 * kMargin + (zmax - zmin) * v.s + kLegend;
 
   // Band width: 2 eps, or the minimum visible width.
