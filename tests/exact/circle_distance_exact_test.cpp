@@ -256,6 +256,24 @@ TEST(CircleDistanceExact, MeridianLargeRadius) {
                    ExactStatus::infinitely_many, "meridian r_b = R/2");
 }
 
+TEST(CircleDistanceExact, ThroughTheAxis) {
+  // b in the xz-plane, tangent to the axis of a at the centre of a:
+  // f(t) = 2 r_b (1 + cos t)(r_b − R) + R². For r_b > R the minimum R is at
+  // the axis point, where every point of a is closest: a continuum.
+  expect_certified(C({0, 0, 0}, {0, 0, 1}, 1), C({2, 0, 0}, {0, 1, 0}, 2), 1.0,
+                   ExactStatus::infinitely_many, "closest point of b on the axis of a");
+  // For r_b < R the minimum |R − 2 r_b| is at (2 r_b, 0, 0): one pair.
+  expect_certified(C({0, 0, 0}, {0, 0, 1}, 1), C({0.25, 0, 0}, {0, 1, 0}, 0.25), 0.5,
+                   ExactStatus::ok, "b through the axis, minimum away from it");
+  // b crossing the axis transversally (a double root of H there, a local max of f).
+  const Circle3 a = C({0, 0, 0}, {0, 0, 1}, 1), b = C({1, -1, 0}, {1, 1, 0}, 2);  // crosses at z = ±√2
+  const auto r = circle3_circle3_distance_exact(a, b);
+  const double bf = static_cast<double>(brute_force(a, b));
+  EXPECT_NE(r.status, ExactStatus::not_certified) << r.reason;
+  EXPECT_LE(r.lower, bf * (1 + 1e-15));
+  EXPECT_NEAR(r.upper, bf, 1e-12);
+}
+
 TEST(CircleDistanceExact, TangentNotTouching) {
   // Coplanar, externally at distance 0.25 along x (tangent lines parallel).
   expect_certified(C({0, 0, 0}, {0, 0, 1}, 1), C({2.25, 0, 0}, {0, 0, 1}, 1), 0.25, ExactStatus::ok,
