@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <random>
 
+#include "core/case_io.h"
 #include "tests/fast/biarc_test_util.h"
 
 namespace revdist {
@@ -205,6 +206,38 @@ TEST(BiarcTree, EmptyAndDegenerateProfiles) {
   const BiarcTree t2 = build_biarc_tree(point, 1e-3, &st);
   EXPECT_EQ(st.spirals, 1);
   EXPECT_EQ(st.leaves, 1);
+}
+
+}  // namespace
+}  // namespace revdist
+
+namespace revdist {
+namespace {
+
+using namespace testing_util;
+
+// Every bundled model (keyframes of deformable ones at integer and half times):
+// proven eps covers the sampled Hausdorff distance at every node, capsules cover.
+TEST(BiarcTree, BundledModelsProvenBoundCoversSampledHausdorff) {
+  const std::string dir = std::string(REVDIST_SOURCE_DIR) + "/cases/models/";
+  for (const char* name : {"pawn", "cup", "bottle", "table", "lightmil", "sphere", "can", "torus", "morph"}) {
+    const Case c = read_case(dir + name + ".json");
+    for (const SolidDef& solid : c.solids) {
+      for (double time = 0.0; time <= static_cast<double>(solid.keyframes.size() - 1); time += 0.5) {
+        const Profile profile = profile_at(solid, time);
+        for (double eps : {1e-3, 1e-5}) {
+          SCOPED_TRACE(std::string(name) + " t=" + std::to_string(time) + " eps=" + std::to_string(eps));
+          BuildStats st;
+          const BiarcTree tree = build_biarc_tree(profile, eps, &st);
+          EXPECT_EQ(st.unproven, 0);
+          EXPECT_EQ(st.depth_limited, 0);
+          EXPECT_LE(st.max_error, eps);
+          check_tree(profile, tree, eps, 120);
+          check_tiling(profile, tree);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
