@@ -21,6 +21,8 @@ namespace {
 
 using namespace exact_detail;
 
+// Phase timings on stderr when built with -DREVDIST_EXACT_PROFILE (how the
+// filters below were chosen); compiled out otherwise.
 #ifdef REVDIST_EXACT_PROFILE
 struct Prof { const char* name; double ms = 0; ~Prof() { std::fprintf(stderr, "%s %.1f ms\n", name, ms); } };
 struct ProfScope { Prof& p; std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
@@ -682,6 +684,9 @@ ExactCircleResult compute(const Circle3& a, const Circle3& b, const ExactOptions
   if (a.radius == 0) {
     ExactCircleResult r = point_circle(b, a, target, max_bits);
     swap_sides(r);
+    // Feet on b seen from the point a: near and far point, only the far one
+    // when a lies on b, all of b when a is on b's axis.
+    if (r.binormals == 1) r.binormals = r.contact ? 1 : 2;
     return r;
   }
 

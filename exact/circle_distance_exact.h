@@ -31,8 +31,9 @@ struct ExactCircleResult {
   // (P, Q) is a critical pair of |P - Q|^2 (near or far branch). -1 when there
   // are infinitely many (coaxial circles, Villarceau and meridian pairs, a
   // point on the axis of a). When b is a point: 1 (0 if it coincides with a's
-  // point). Exact, like the rest: roots of the binormal polynomial with the
-  // sign of y decided on algebraic numbers.
+  // point); when a is a point: 2 (near and far point of b; 1 if a lies on b).
+  // Exact, like the rest: roots of the binormal polynomial with the sign of y
+  // decided on algebraic numbers.
   int binormals = 0;
 };
 
@@ -50,6 +51,8 @@ struct ExactOptions {
 // Contact (distance exactly 0) is decided exactly. Never throws.
 // status infinitely_many: the minimum is attained on a continuum (coaxial and
 // Villarceau pairs, a point or a closest point on the axis of the other circle).
+// When candidates of both kinds tie within the final interval (equal to
+// ~1e-30), the kind of the candidate with the smallest upper bound decides.
 ExactCircleResult circle3_circle3_distance_exact(const Circle3& a, const Circle3& b,
                                                  const ExactOptions& options = {});
 
