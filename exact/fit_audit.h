@@ -58,8 +58,13 @@ struct TreeAudit {
   double time_ms = 0.0;
 };
 
-// Audits every leaf at its claimed eps; per_leaf (optional) receives each result.
-TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>* per_leaf = nullptr);
+// Audits every leaf; per_leaf (optional) receives each result. tight = false:
+// each leaf's target is its claimed eps (cheapest; a certified error just under
+// the claim proves the claim but says little more). tight = true: target 0, so
+// refinement goes on until the bound is within 5% of the proven lower bound (or
+// the node budget ends): the certified error then measures the fit itself.
+TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>* per_leaf = nullptr,
+                       bool tight = false);
 
 // The leaves of a biarc tree (fast/biarc_tree.h: BiarcTree) over `profile`.
 // A template so that exact/ does not depend on fast/ (STYLE: core <- fast,

@@ -9,16 +9,16 @@
 namespace revdist::fit_audit_detail {
 
 void halve(const Poly& c, Poly& left, Poly& right) {
+  // In place in `right`: after level r, right[n-1-r] is final and right[0] is
+  // left control point r + 1.
   const std::size_t n = c.size();
-  Poly t = c;
+  right = c;
   left.resize(n);
-  right.resize(n);
   for (std::size_t r = 0; r < n; ++r) {
-    left[r] = t[0];
-    right[n - 1 - r] = t[n - 1 - r];
+    left[r] = right[0];
     for (std::size_t j = 0; j + 1 < n - r; ++j) {
-      mpfi_add(t[j].p(), t[j].p(), t[j + 1].p());
-      mpfi_div_2ui(t[j].p(), t[j].p(), 1);
+      mpfi_add(right[j].p(), right[j].p(), right[j + 1].p());
+      mpfi_div_2ui(right[j].p(), right[j].p(), 1);
     }
   }
 }

@@ -157,6 +157,79 @@ TEST(FitAudit, ArcPieceSpansByExactArcs) {
   EXPECT_LE(a.certified_error, kExactTol);
 }
 
+// A nearly straight input arc (radius ~ 1.25e7, curvature 8e-8): split at its
+// r extreme (u = 0.5) by the fitter. The audit's circle form has no far-away
+// centre to lose digits to, so it certifies the first half at rounding level.
+Profile nearly_straight_arc() {
+  Profile prof;
+  prof.pieces = {arc_piece({0.5, 0}, {0.5 + 1e-8, 0.5}, {0.5, 1})};
+  return prof;
+}
+
+TEST(FitAudit, NearlyStraightArcPiece) {
+  const Profile prof = nearly_straight_arc();
+  const BiarcTree tree = build_biarc_tree(prof, 1e-5);
+  const std::vector<FitLeaf> leaves = biarc_tree_leaves(prof, tree);
+  ASSERT_EQ(leaves.size(), 2u);
+  std::vector<FitAudit> per;
+  const TreeAudit t = audit_leaves(leaves, &per, true);
+  EXPECT_EQ(t.certified, t.leaves) << t.first_problem_reason;
+  EXPECT_LE(per[0].certified_error, kExactTol);
+  // The second half starts at the double C(0.5) = centre + R (cos, sin), which is
+  // ~7e-10 (R x ulp) off the exact circle: the audit proves it (lower bound).
+  EXPECT_GE(per[1].certified_error, per[1].lower_bound);
+  EXPECT_GT(per[1].lower_bound, 1e-10);
+}
+
+// FITTER BUG (found by this audit; owner: core/curve_eval arc evaluation and the
+// fast/biarc_tree rounding slack): leaf [0.5, 1] claims 64 ulp x (coordinate
+// scale) = 1.4e-14 but its start point is off the exact arc by a proven
+// 6.9e-10, because arc points are evaluated as centre + R (cos, sin) with a
+// centre 1.25e7 away. Enable when fixed.
+TEST(FitAudit, DISABLED_NearlyStraightArcPieceWithinClaim) {
+  const Profile prof = nearly_straight_arc();
+  const BiarcTree tree = build_biarc_tree(prof, 1e-5);
+  const TreeAudit t = audit_leaves(biarc_tree_leaves(prof, tree));
+  EXPECT_EQ(t.violations, 0) << "leaf " << t.first_problem;
+}
+
+TEST(FitAudit, ScalingByAPowerOfTwoScalesTheBound) {
+  // Every quantity scales exactly (k L is unchanged), so the certificate does too.
+  const Piece p = bezier_piece({{0, 0}, {1.2, 0.3}, {0.2, 1.1}, {0.9, 1.6}, {0, 2}}, {1, 2, 0.5, 3, 1});
+  for (const Fit& f : fits_of(p, 2)) {
+    const FitAudit a = audit_fit(p, f.u0, f.u1, f.biarc.arc, 2, 0.0);
+    for (double s : {0x1p-20, 0x1p+20}) {
+      Piece q = p;
+      for (Vec2& v : q.points) v *= s;
+      Arc2 arcs[2] = {f.biarc.arc[0], f.biarc.arc[1]};
+      for (Arc2& a2 : arcs) {
+        a2.start *= s;
+        a2.curvature /= s;
+        a2.length *= s;
+      }
+      const FitAudit b = audit_fit(q, f.u0, f.u1, arcs, 2, 0.0);
+      ASSERT_TRUE(a.certified && b.certified) << a.reason << b.reason;
+      EXPECT_NEAR(b.certified_error / s, a.certified_error, 1e-12 * a.certified_error) << s;
+    }
+  }
+}
+
+TEST(FitAudit, DeformableProfileAtAFractionalTime) {
+  const std::filesystem::path file = std::filesystem::path(REVDIST_SOURCE_DIR) / "cases" / "models" / "morph.json";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  const Case c = read_case(file.string());
+  for (const SolidDef& s : c.solids) {
+    if (!s.deformable()) continue;
+    for (double time : {0.25, 0.5, 0.8125}) {
+      const Profile prof = profile_at(s, time * static_cast<double>(s.keyframes.size() - 1));
+      const BiarcTree tree = build_biarc_tree(prof, 1e-4);
+      const TreeAudit t = audit_leaves(biarc_tree_leaves(prof, tree));
+      EXPECT_EQ(t.violations, 0) << s.name << " t=" << time << " leaf " << t.first_problem;
+      EXPECT_EQ(t.certified, t.leaves) << s.name << " t=" << time << ": " << t.first_problem_reason;
+    }
+  }
+}
+
 TEST(FitAudit, CubicBezierBiarcsWithinLensAndAboveSampled) {
   const Piece p = bezier_piece({{0, 0}, {1, 0.5}, {1, 1.5}, {0, 2}});
   for (int depth : {0, 3}) {
@@ -246,6 +319,41 @@ TEST(FitAudit, RandomPiecesTrees) {
   }
 }
 
+// Long random run: REVDIST_AUDIT_TRIALS=N (skipped when unset). Random cubic and
+// quartic, polynomial and rational, Bezier and B-spline pieces at eps 1e-3 ..
+// 1e-6, tight audits: every leaf the fitter proved must certify within its claim.
+TEST(FitAudit, RandomStress) {
+  const char* env = std::getenv("REVDIST_AUDIT_TRIALS");
+  const int trials = env ? std::atoi(env) : 0;
+  if (trials <= 0) GTEST_SKIP() << "set REVDIST_AUDIT_TRIALS";
+  const std::uint64_t seed = testing_util::test_seed(7);
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  long long leaves = 0;
+  double worst_ratio = 0.0;
+  for (int trial = 0; trial < trials; ++trial) {
+    Profile prof;
+    const int kind = trial % 4;
+    prof.pieces = {kind < 2 ? testing_util::random_bezier(rng, kind == 1)
+                            : testing_util::random_bspline(rng, kind == 2 ? 3 : 4, 8, trial % 8 >= 4)};
+    const double eps = std::pow(10.0, -3.0 - trial % 4);
+    const BiarcTree tree = build_biarc_tree(prof, eps);
+    const std::vector<FitLeaf> lv = biarc_tree_leaves(prof, tree);
+    std::vector<FitAudit> per;
+    const TreeAudit t = audit_leaves(lv, &per, true);
+    leaves += t.leaves;
+    for (std::size_t i = 0; i < per.size(); ++i) {
+      if (!std::isfinite(lv[i].claimed)) continue;
+      EXPECT_TRUE(per[i].certified) << "trial " << trial << " leaf " << i << ": " << per[i].reason;
+      EXPECT_LE(per[i].certified_error, lv[i].claimed)
+          << "trial " << trial << " leaf " << i << " [" << lv[i].u0 << ", " << lv[i].u1 << "] lower "
+          << per[i].lower_bound;
+      if (per[i].certified) worst_ratio = std::max(worst_ratio, per[i].certified_error / lv[i].claimed);
+    }
+  }
+  std::printf("%d trials, %lld leaves, max certified/claimed %.3f\n", trials, leaves, worst_ratio);
+}
+
 // Every leaf of every bundled model at three eps: no violations. Prints the
 // worst certified error and the time per leaf.
 TEST(FitAudit, BundledModelsHaveNoViolations) {
@@ -256,7 +364,8 @@ TEST(FitAudit, BundledModelsHaveNoViolations) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
-  for (double eps : {1e-3, 1e-4, 1e-5}) {
+  for (const auto& [eps, tight] : {std::pair{1e-3, false}, std::pair{1e-4, false}, std::pair{1e-5, false},
+                                   std::pair{1e-3, true}, std::pair{1e-5, true}}) {
     long long leaves = 0, nodes = 0;
     int violations = 0, uncertified = 0;
     double worst = 0.0, worst_ratio = 0.0, ms = 0.0;
@@ -268,7 +377,7 @@ TEST(FitAudit, BundledModelsHaveNoViolations) {
           const BiarcTree tree = build_biarc_tree(prof, eps);
           const std::vector<FitLeaf> lv = biarc_tree_leaves(prof, tree);
           std::vector<FitAudit> per;
-          const TreeAudit t = audit_leaves(lv, &per);
+          const TreeAudit t = audit_leaves(lv, &per, tight);
           leaves += t.leaves;
           nodes += t.nodes;
           ms += t.time_ms;
@@ -293,9 +402,9 @@ TEST(FitAudit, BundledModelsHaveNoViolations) {
         }
       }
     }
-    std::printf("eps %.0e: %lld leaves, %d violations, %d uncertified, max certified %.3g, max certified/claimed "
+    std::printf("eps %.0e%s: %lld leaves, %d violations, %d uncertified, max certified %.3g, max certified/claimed "
                 "%.3f, %.1f ms (%.0f us/leaf, %.1f nodes/leaf)\n",
-                eps, leaves, violations, uncertified, worst, worst_ratio, ms, 1e3 * ms / std::max(1LL, leaves),
+                eps, tight ? " tight" : "", leaves, violations, uncertified, worst, worst_ratio, ms, 1e3 * ms / std::max(1LL, leaves),
                 static_cast<double>(nodes) / std::max(1LL, leaves));
     EXPECT_EQ(violations, 0);
     EXPECT_EQ(uncertified, 0);
