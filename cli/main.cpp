@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   revdist::cli::add_circles_command(app);
   revdist::cli::add_fit_command(app);
+  revdist::cli::add_distance_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -2,6 +2,7 @@
 // errors naming file and item, and the JSON keys of SPEC section 5.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -19,7 +20,10 @@ struct CommandRun {
 };
 
 CommandRun run(const std::string& args) {
-  const std::string err_file = testing::TempDir() + "revdist_cli_stderr.txt";
+  // One file per call: ctest runs the tests of this binary in parallel processes.
+  static int calls = 0;
+  const std::string err_file = testing::TempDir() + "revdist_cli_stderr_" + std::to_string(getpid()) + "_" +
+                               std::to_string(++calls) + ".txt";
   const std::string cmd = std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file;
   CommandRun r;
   FILE* p = popen(cmd.c_str(), "r");
@@ -33,6 +37,7 @@ CommandRun run(const std::string& args) {
     while ((n = fread(buf.data(), 1, buf.size(), e)) > 0) r.err.append(buf.data(), n);
     std::fclose(e);
   }
+  std::remove(err_file.c_str());
   return r;
 }
 

@@ -1,0 +1,40 @@
+// Posed solids of a case, one tree per distinct (solid, time).
+#include "fast/case_model.h"
+
+#include <chrono>
+
+#include "core/case_io.h"
+
+namespace revdist {
+
+CaseModel build_case_model(const Case& c, double eps) {
+  CaseModel m;
+  for (const Instance& inst : c.instances) {
+    const double time = c.solids[inst.solid].deformable() ? inst.time : 0.0;
+    std::size_t k = 0;
+    while (k < m.shapes.size() && !(m.shapes[k]->solid == inst.solid && m.shapes[k]->time == time)) ++k;
+    if (k == m.shapes.size()) {
+      auto s = std::make_unique<CaseModel::Shape>();
+      s->solid = inst.solid;
+      s->time = time;
+      s->profile = profile_at(c.solids[inst.solid], time);
+      const auto t0 = std::chrono::steady_clock::now();
+      rebuild_biarc_tree(s->profile, eps, s->tree, &s->stats);
+      s->build_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+      m.shapes.push_back(std::move(s));
+    }
+    m.shape_of.push_back(k);
+  }
+  for (std::size_t i = 0; i < c.instances.size(); ++i) {
+    const CaseModel::Shape& s = *m.shapes[m.shape_of[i]];
+    PosedSolid p;
+    p.profile = &s.profile;
+    p.tree = &s.tree;
+    p.R = c.instances[i].pose.rotation();
+    p.t = c.instances[i].pose.translation;
+    m.instances.push_back(p);
+  }
+  return m;
+}
+
+}  // namespace revdist

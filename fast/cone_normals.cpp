@@ -1,0 +1,373 @@
+// Normal lines of conical patches against circles and cones (see the header).
+//
+// Circle against cone line. Circle C: P(θ) = C + r(u cosθ + v sinθ); in K's
+// frame z(θ) and |P - o|^2 are trig polynomials of degree 1, so
+// q = ρ^2 = |P - o|^2 - z^2 has degree 2. h = n_r ρ + n_z z is critical where
+// n_r q' + 2 n_z z' ρ = 0; squaring, F = n_r^2 q'^2 - 4 n_z^2 z'^2 q = 0, a trig
+// polynomial of degree 4: degree 8 in t = tan(θ/2). Squaring adds the critical
+// points of the mirror cone (−n_r): harmless extra points of C.
+//
+// Cone against cone. A normal line of a cone with n_r != 0 lies in a meridian
+// plane and meets the axis at the angle of the cone's normal: through
+// Q_A = o_A + λ a with (d . a)^2 = n_zA^2 |d|^2, d = Q_B - Q_A, Q_B = o_B + μ b,
+// and (d . b)^2 = n_zB^2 |d|^2. Two quadrics in (λ, μ); eliminating λ leaves a
+// quartic in μ (resultant of two quadratics).
+#include "fast/cone_normals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fast/circle_internal.h"
+
+namespace revdist {
+
+namespace {
+
+using namespace circle_detail;
+
+// Power of two near 1/s, so scaled lengths are exact and near 1.
+double pow2_inverse(double s) {
+  if (!(s > 0) || !std::isfinite(s)) return 1.0;
+  int e;
+  std::frexp(s, &e);
+  return std::ldexp(1.0, -e);
+}
+
+// Small dense polynomials (coefficient i of t^i).
+struct Poly {
+  double c[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  int n = 0;
+};
+
+Poly mul(const Poly& a, const Poly& b) {
+  Poly r;
+  r.n = a.n + b.n;
+  poly_mul(a.c, a.n, b.c, b.n, r.c);
+  return r;
+}
+Poly mul_abs(const Poly& a, const Poly& b) {
+  Poly x = a, y = b;
+  for (int i = 0; i <= x.n; ++i) x.c[i] = std::abs(x.c[i]);
+  for (int i = 0; i <= y.n; ++i) y.c[i] = std::abs(y.c[i]);
+  return mul(x, y);
+}
+Poly lin(double a, double b, double c, double s) {  // s * (a + b t + c t^2)
+  Poly p;
+  p.n = 2;
+  p.c[0] = s * a;
+  p.c[1] = s * b;
+  p.c[2] = s * c;
+  return p;
+}
+Poly axpy(double alpha, const Poly& x, double beta, const Poly& y) {
+  Poly r;
+  r.n = std::max(x.n, y.n);
+  for (int i = 0; i <= r.n; ++i) r.c[i] = alpha * (i <= x.n ? x.c[i] : 0) + beta * (i <= y.n ? y.c[i] : 0);
+  return r;
+}
+Poly trig1(double q0, double q1, double q2) {
+  Poly p;
+  p.n = 2;
+  trig1_to_t(q0, q1, q2, p.c);
+  return p;
+}
+double max_abs(const Poly& p) {
+  double m = 0;
+  for (int i = 0; i <= p.n; ++i) m = std::max(m, std::abs(p.c[i]));
+  return m;
+}
+double sum_abs(const Poly& p) {
+  double m = 0;
+  for (int i = 0; i <= p.n; ++i) m += std::abs(p.c[i]);
+  return m;
+}
+
+// Circle C written in the frame of patch K's axis, lengths scaled by sigma:
+// z(θ) and q(θ) = ρ^2 as polynomials in t = tan(θ/2), times (1+t^2) and (1+t^2)^2.
+struct CircleInAxisFrame {
+  CircleFrame f;
+  double sigma;
+  Poly Z, Zp, Q, Q1, one;  // z, z', q, q' (t-forms), 1 + t^2
+  Poly Qa, Q1a;            // |.| versions for rounding estimates
+  Vec3 point(double th, const Circle3& C) const {
+    return C.center + C.radius * (f.u * std::cos(th) + f.v * std::sin(th));
+  }
+};
+
+CircleInAxisFrame circle_in_axis_frame(const Circle3& C, const Patch& K) {
+  CircleInAxisFrame k;
+  k.f = make_frame(C);
+  const Vec3 D0 = C.center - K.o;
+  k.sigma = pow2_inverse(std::max(D0.cwiseAbs().maxCoeff(), C.radius));
+  const Vec3 D = D0 * k.sigma;
+  const double r = C.radius * k.sigma;
+  const Vec3 U = k.f.u * r, V = k.f.v * r;
+  const double z0 = D.dot(K.a), z1 = U.dot(K.a), z2 = V.dot(K.a);
+  const double d0 = D.squaredNorm() + r * r, d1 = 2 * D.dot(U), d2 = 2 * D.dot(V);
+  k.Z = trig1(z0, z1, z2);
+  k.Zp = trig1(0, z2, -z1);
+  const Poly Dt = trig1(d0, d1, d2), Dp = trig1(0, d2, -d1);
+  k.one = lin(1, 0, 1, 1);
+  k.Q = axpy(1, mul(Dt, k.one), -1, mul(k.Z, k.Z));
+  k.Q1 = axpy(1, mul(Dp, k.one), -2, mul(k.Z, k.Zp));
+  k.Qa = axpy(1, mul_abs(Dt, k.one), 1, mul_abs(k.Z, k.Z));
+  k.Q1a = axpy(1, mul_abs(Dp, k.one), 2, mul_abs(k.Z, k.Zp));
+  return k;
+}
+
+}  // namespace
+
+int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* degenerate) {
+  *degenerate = false;
+  if (C.radius == 0) {
+    out[0] = C.center;
+    return 1;
+  }
+  const CircleInAxisFrame k = circle_in_axis_frame(C, K);
+  const Poly& Q = k.Q;
+  const Poly& Q1 = k.Q1;
+  const Poly& one = k.one;
+  const Poly& Qa = k.Qa;
+  const double sigma = k.sigma;
+  const double nr2 = K.n.x() * K.n.x(), nz2 = K.n.y() * K.n.y();
+  const Poly F = axpy(nr2, mul(Q1, Q1), -4 * nz2, mul(mul(k.Zp, k.Zp), Q));
+  // Rounding of the products: a few ε of the absolute-value products.
+  const Poly Fa = axpy(nr2, mul(k.Q1a, k.Q1a), 4 * nz2, mul(mul_abs(k.Zp, k.Zp), Qa));
+  auto point = [&](double t) { return k.point(t, C); };
+  double th[16];  // two root charts of a degree-8 polynomial
+  int n = 0;
+  if (max_abs(F) > 256 * kEps * max_abs(Fa)) {
+    n = trig_poly_roots(F.c, 8, th);
+    for (int i = 0; i < n; ++i) out[i] = point(th[i]);
+    return n;
+  }
+  // h is constant on C: the ends of the arcs of C whose feet fall in the segment.
+  *degenerate = true;
+  int m = 0;
+  out[m++] = point(0.0);
+  if (max_abs(Q1) > 256 * kEps * max_abs(k.Q1a)) {
+    n = trig_poly_roots(Q1.c, 4, th);
+    for (int i = 0; i < n && m < 16; ++i) out[m++] = point(th[i]);
+  }
+  const Poly one2 = mul(one, one);
+  for (const Vec2& q : {K.p0, K.p1}) {
+    const double rr = q.x() * sigma;
+    const Poly G = axpy(1, Q, -rr * rr, one2);
+    if (max_abs(G) <= 256 * kEps * (max_abs(Qa) + rr * rr)) continue;
+    n = trig_poly_roots(G.c, 4, th);
+    for (int i = 0; i < n && m < 16; ++i) out[m++] = point(th[i]);
+  }
+  return m;
+}
+
+namespace {
+
+// Where the line through axis point Q (of straight patch P) with direction d
+// meets P's cone line at a point where it is normal to the cone. Returns the
+// count (0..2).
+int normal_feet(const Patch& P, const Vec3& Q, const Vec3& d, Vec3* out) {
+  const double zq = (Q - P.o).dot(P.a);
+  const double da = d.dot(P.a);
+  const Vec3 dh = d - da * P.a;
+  const double h = dh.norm();
+  const double len = d.norm();
+  if (!(h > 0) || !(len > 0)) return 0;
+  int k = 0;
+  for (int side : {1, -1}) {
+    // Points Q + t d with side * t >= 0 have local coordinates (|t| h, zq + t da):
+    // in the half-plane of side * dh the line's local direction is (side h, da).
+    const double den = P.n.x() * side * h + P.n.y() * da;
+    if (den == 0) continue;
+    const double t = (P.off - P.n.y() * zq) / den;
+    if (side * t < 0) continue;
+    // Normal to the cone here: the local direction is parallel to n.
+    const double cosang = std::abs(den) / len;
+    if (cosang < 1 - 1e-6) continue;
+    out[k++] = Q + t * d;
+  }
+  return k;
+}
+
+// Pairs (x on A's cone, y on B's cone) joined by a common normal through Q_A, Q_B.
+// When the line is normal to one cone but meets the other only where r < 0, the
+// missing foot is NaN: the point found still matters for the sign tests.
+int pair_feet(const Patch& A, const Patch& B, const Vec3& QA, const Vec3& QB, const Vec3& d, Vec3* xo, Vec3* yo) {
+  Vec3 xs[2], ys[2];
+  const int nx = normal_feet(A, QA, d, xs);
+  const int ny = normal_feet(B, QB, d, ys);
+  const Vec3 none = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  int k = 0;
+  for (int i = 0; i < std::max(nx, 1); ++i)
+    for (int j = 0; j < std::max(ny, 1); ++j) {
+      if (i >= nx && j >= ny) continue;
+      xo[k] = i < nx ? xs[i] : none;
+      yo[k] = j < ny ? ys[j] : none;
+      ++k;
+    }
+  return k;
+}
+
+}  // namespace
+
+int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, bool* degenerate) {
+  *degenerate = false;
+  const double nrA = A.n.x(), nzA = A.n.y(), nrB = B.n.x(), nzB = B.n.y();
+  // Flat annuli: normal lines parallel to the axis (families, see header).
+  if (nrA == 0 || nrB == 0) return 0;
+  const double c = A.a.dot(B.a);
+  const Vec3 axb = A.a.cross(B.a);
+  if (axb.squaredNorm() == 0) return 0;  // parallel axes: families, see header
+  // Height range on B's axis of the normals of B's segment (z - r n_z / n_r at the ends).
+  const double zb0 = B.p0.y() - B.p0.x() * nzB / nrB, zb1 = B.p1.y() - B.p1.x() * nzB / nrB;
+  const Vec3 w0 = B.o - A.o;
+  double size = std::max({w0.cwiseAbs().maxCoeff(), std::abs(zb0), std::abs(zb1), B.p0.norm(), B.p1.norm(),
+                          A.p0.norm(), A.p1.norm()});
+  const double sigma = pow2_inverse(size);
+  const Vec3 w = w0 * sigma;
+  const double wa = w.dot(A.a), wb = w.dot(B.a), ww = w.squaredNorm();
+  const double nA2 = nzA * nzA, nB2 = nzB * nzB;
+  // E1 = α2 λ^2 + α1 λ + α0, E2 = β2 λ^2 + β1 λ + β0, coefficients polynomials in μ.
+  Poly a1, a0, b1, b0;
+  const double al2 = 1 - nA2, be2 = c * c - nB2;
+  a1.n = 1; a1.c[0] = -2 * al2 * wa; a1.c[1] = -2 * al2 * c;
+  a0.n = 2; a0.c[0] = wa * wa - nA2 * ww; a0.c[1] = 2 * wa * c - nA2 * 2 * wb; a0.c[2] = c * c - nA2;
+  b1.n = 1; b1.c[0] = -2 * c * wb + 2 * nB2 * wa; b1.c[1] = -2 * c + 2 * nB2 * c;
+  b0.n = 2; b0.c[0] = wb * wb - nB2 * ww; b0.c[1] = 2 * wb - nB2 * 2 * wb; b0.c[2] = 1 - nB2;
+  const Poly P = axpy(al2, b0, -be2, a0);   // α2 β0 - β2 α0   (λ^0 of α2 E2 - β2 E1)
+  const Poly S = axpy(al2, b1, -be2, a1);   // α2 β1 - β2 α1   (λ^1)
+  const Poly T = axpy(1, mul(a1, b0), -1, mul(b1, a0));  // α1 β0 - β1 α0
+  const Poly Res = axpy(1, mul(P, P), -1, mul(S, T));
+  const Poly Pa = axpy(std::abs(al2), mul_abs(b0, Poly{{1}, 0}), std::abs(be2), mul_abs(a0, Poly{{1}, 0}));
+  const double mag = sum_abs(mul(Pa, Pa)) + sum_abs(mul_abs(S, T)) + 1e-300;
+  if (max_abs(Res) <= 256 * kEps * mag) {
+    *degenerate = true;
+    return 0;
+  }
+  const double margin = 1e-6;  // in scaled units: the range check on the feet decides
+  const double lo = std::min(zb0, zb1) * sigma - margin, hi = std::max(zb0, zb1) * sigma + margin;
+  double mus[8];
+  const double tol = 64 * kEps * sum_abs(Res) * std::pow(std::max({1.0, std::abs(lo), std::abs(hi)}), 4);
+  const int nm = poly_roots_in(Res.c, Res.n, lo, hi, tol, mus);
+  int k = 0;
+  for (int i = 0; i < nm && k <= 12; ++i) {
+    const double mu = mus[i];
+    double lams[2];
+    int nl = 0;
+    const double s = poly_eval(S.c, S.n, mu);
+    const double p = poly_eval(P.c, P.n, mu);
+    const double e1a = al2, e1b = poly_eval(a1.c, 1, mu), e1c = poly_eval(a0.c, 2, mu);
+    if (std::abs(s) > 1e-9 * (std::abs(p) + 1e-300) && std::abs(s) > 1e-14) {
+      lams[nl++] = -p / s;
+    } else {
+      // λ is a double root direction of the pencil: solve E1 and keep both.
+      const double disc = e1b * e1b - 4 * e1a * e1c;
+      if (disc < 0 || e1a == 0) continue;
+      const double sq = std::sqrt(disc);
+      lams[nl++] = (-e1b + sq) / (2 * e1a);
+      lams[nl++] = (-e1b - sq) / (2 * e1a);
+    }
+    for (int j = 0; j < nl && k <= 12; ++j) {
+      const Vec3 QA = A.o + (lams[j] / sigma) * A.a;
+      const Vec3 QB = B.o + (mu / sigma) * B.a;
+      Vec3 d = QB - QA;
+      if (d.norm() > 1e-12 / sigma) {
+        k += pair_feet(A, B, QA, QB, d, x_out + k, y_out + k);
+        continue;
+      }
+      // The axes meet here: lines through the meeting point at both normal angles.
+      const Vec3 Qm = 0.5 * (QA + QB);
+      const double det = 1 - c * c;
+      for (int s1 : {1, -1})
+        for (int g : {1, -1}) {
+          const double ta = s1 * nzA, tb = nzB;  // d . a, d . b (d and -d are one line)
+          const double al = (ta - c * tb) / det, be = (tb - c * ta) / det;
+          const Vec3 base = al * A.a + be * B.a;
+          const double rest = 1 - base.squaredNorm();
+          if (rest < 0) continue;
+          d = base + g * std::sqrt(rest / axb.squaredNorm()) * axb;
+          if (k + 4 > 16) break;
+          k += pair_feet(A, B, Qm, Qm, d, x_out + k, y_out + k);
+          if (rest == 0) break;
+        }
+    }
+  }
+  return k;
+}
+
+int line_surface_intersections(const Vec3& p, const Vec3& d, double s_max, const Patch& P, Vec3* out) {
+  const Vec3 q = p - P.o;
+  const double sigma = pow2_inverse(std::max({q.cwiseAbs().maxCoeff(), s_max, P.p0.norm(), P.p1.norm()}));
+  const Vec3 qs = q * sigma;
+  const double dd = d.squaredNorm();
+  // z(s) = z0 + z1 s, rho^2(s) = A0 + A1 s + A2 s^2 (scaled s).
+  const double z0 = qs.dot(P.a), z1 = d.dot(P.a);
+  const double A0 = qs.squaredNorm() - z0 * z0, A1 = 2 * (qs.dot(d) - z0 * z1), A2 = dd - z1 * z1;
+  double co[5] = {0, 0, 0, 0, 0};
+  int deg;
+  if (P.straight) {
+    // n_r^2 rho^2 = (off - n_z z)^2.
+    const double nr = P.n.x(), nz = P.n.y(), off = P.off * sigma;
+    const double e0 = off - nz * z0, e1 = -nz * z1;
+    co[0] = nr * nr * A0 - e0 * e0;
+    co[1] = nr * nr * A1 - 2 * e0 * e1;
+    co[2] = nr * nr * A2 - e1 * e1;
+    deg = 2;
+  } else {
+    // (rho^2 + cr^2 + (z - cz)^2 - R^2)^2 = 4 cr^2 rho^2.
+    const double cr = P.c.x() * sigma, cz = P.c.y() * sigma, R = P.rho * sigma;
+    const double g0 = A0 + cr * cr + (z0 - cz) * (z0 - cz) - R * R;
+    const double g1 = A1 + 2 * (z0 - cz) * z1, g2 = A2 + z1 * z1;
+    co[0] = g0 * g0 - 4 * cr * cr * A0;
+    co[1] = 2 * g0 * g1 - 4 * cr * cr * A1;
+    co[2] = g1 * g1 + 2 * g0 * g2 - 4 * cr * cr * A2;
+    co[3] = 2 * g1 * g2;
+    co[4] = g2 * g2;
+    deg = 4;
+  }
+  double mag = 0;
+  for (double v : co) mag += std::abs(v);
+  double roots[8];
+  const double sm = s_max * sigma;
+  const int n = poly_roots_in(co, deg, -sm, sm, 64 * kEps * mag * std::pow(std::max(1.0, sm), deg), roots);
+  for (int i = 0; i < n; ++i) out[i] = p + (roots[i] / sigma) * d;
+  return n;
+}
+
+int circle_surface_intersections(const Circle3& C, const Patch& P, Vec3* out) {
+  if (C.radius == 0) {
+    // A point: on the surface only to rounding; report it when it is close.
+    const Vec2 q = patch_local(P, C.center);
+    const double g = patch_surface_function(P, q);
+    const double size = std::max({q.norm(), P.rho, P.p0.norm(), P.p1.norm()});
+    if (std::abs(g) <= 1e-9 * size) out[0] = C.center;
+    return std::abs(g) <= 1e-9 * size ? 1 : 0;
+  }
+  const CircleInAxisFrame k = circle_in_axis_frame(C, P);
+  Poly G, Ga;
+  if (P.straight) {
+    // (off - n_z z)^2 = n_r^2 q, times (1+t^2)^2.
+    const double nr = P.n.x(), nz = P.n.y(), off = P.off * k.sigma;
+    const Poly E = axpy(off, k.one, -nz, k.Z);
+    G = axpy(1, mul(E, E), -nr * nr, k.Q);
+    const Poly Ea = axpy(std::abs(off), k.one, std::abs(nz), mul_abs(k.Z, Poly{{1}, 0}));
+    Ga = axpy(1, mul(Ea, Ea), nr * nr, k.Qa);
+  } else {
+    // (q + cr^2 + (z - cz)^2 - R^2)^2 = 4 cr^2 q, times (1+t^2)^4.
+    const double cr = P.c.x() * k.sigma, cz = P.c.y() * k.sigma, R = P.rho * k.sigma;
+    const Poly Zc = axpy(1, k.Z, -cz, k.one);
+    const Poly one2 = mul(k.one, k.one);
+    const Poly H = axpy(1, axpy(1, k.Q, cr * cr - R * R, one2), 1, mul(Zc, Zc));
+    G = axpy(1, mul(H, H), -4 * cr * cr, mul(k.Q, one2));
+    const Poly Zca = axpy(1, mul_abs(k.Z, Poly{{1}, 0}), std::abs(cz), k.one);
+    const Poly Ha = axpy(1, axpy(1, k.Qa, cr * cr + R * R, one2), 1, mul(Zca, Zca));
+    Ga = axpy(1, mul(Ha, Ha), 4 * cr * cr, mul(k.Qa, one2));
+  }
+  if (max_abs(G) <= 256 * kEps * max_abs(Ga)) return 0;  // C lies on the surface: no isolated points
+  double th[16];
+  const int n = trig_poly_roots(G.c, G.n, th);
+  for (int i = 0; i < n; ++i) out[i] = k.point(th[i], C);
+  return n;
+}
+
+}  // namespace revdist

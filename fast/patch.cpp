@@ -1,0 +1,115 @@
+// Patches of revolution: construction from biarc arcs, local/world maps and
+// membership tests (paper section 3).
+#include "fast/patch.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace revdist {
+
+namespace {
+double cross2(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+}  // namespace
+
+Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t) {
+  Patch p;
+  p.o = t;
+  p.a = R.col(2).normalized();
+  p.p0 = arc.start;
+  p.p1 = arc.end();
+  if (arc.straight()) {
+    p.straight = true;
+    const Vec2 d = (p.p1 - p.p0);
+    const double len = d.norm();
+    p.n = len > 0 ? Vec2(-d.y() / len, d.x() / len) : Vec2(-arc.tangent.y(), arc.tangent.x());
+    p.off = p.n.dot(p.p0);
+  } else {
+    p.c = arc.center();
+    p.rho = 1.0 / std::abs(arc.curvature);
+    const Vec2 v = p.p0 - p.c;
+    p.d0 = v / v.norm();
+    p.sweep = arc.curvature * arc.length;
+  }
+  return p;
+}
+
+Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r) {
+  const Vec3 d = x - p.o;
+  const double z = d.dot(p.a);
+  const Vec3 h = d - z * p.a;
+  const double r = h.norm();
+  if (e_r) {
+    if (r > 0) {
+      *e_r = h / r;
+    } else {
+      // On the axis: every half-plane contains x; pick one.
+      const Vec3 any = std::abs(p.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+      *e_r = p.a.cross(any).normalized();
+    }
+  }
+  return Vec2(r, z);
+}
+
+Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r) { return p.o + q.x() * e_r + q.y() * p.a; }
+
+Circle3 patch_major_circle(const Patch& p) { return {p.o + p.c.y() * p.a, p.a, std::abs(p.c.x())}; }
+
+Circle3 patch_end_circle(const Patch& p, int i) {
+  const Vec2& q = i == 0 ? p.p0 : p.p1;
+  return {p.o + q.y() * p.a, p.a, std::max(0.0, q.x())};
+}
+
+bool patch_contains_local(const Patch& p, const Vec2& q, double tol) {
+  if (!q.allFinite()) return false;
+  if (p.straight) {
+    if (std::abs(p.n.dot(q) - p.off) > tol) return false;
+    const Vec2 d = p.p1 - p.p0;
+    const double s = (q - p.p0).dot(d);
+    return s >= -tol * d.norm() && s <= d.squaredNorm() + tol * d.norm();
+  }
+  const Vec2 v = q - p.c;
+  const double len = v.norm();
+  if (std::abs(len - p.rho) > tol) return false;
+  // Angle from d0 to v in the sweep's direction, in [0, 2 pi).
+  double phi = std::atan2(cross2(p.d0, v), p.d0.dot(v));
+  if (p.sweep < 0) phi = -phi;
+  if (phi < 0) phi += 2 * M_PI;
+  const double sweep = std::abs(p.sweep);
+  const double slack = p.rho > 0 ? tol / p.rho : 0.0;
+  return phi <= sweep + slack || phi >= 2 * M_PI - slack;
+}
+
+double patch_surface_function(const Patch& p, const Vec2& q) {
+  return p.straight ? p.n.dot(q) - p.off : (q - p.c).norm() - p.rho;
+}
+
+void patch_disk(const Patch& p, Vec2* centre, double* radius) {
+  if (!p.straight && std::abs(p.sweep) > M_PI) {
+    *centre = p.c;
+    *radius = p.rho;
+    return;
+  }
+  *centre = 0.5 * (p.p0 + p.p1);
+  *radius = 0.5 * (p.p1 - p.p0).norm();
+}
+
+Circle3 patch_disk_circle(const Patch& p, const Vec2& centre) {
+  return {p.o + centre.y() * p.a, p.a, std::max(centre.x(), 0.0)};
+}
+
+double patch_extent(const Patch& p, Vec3* centre) {
+  // A box of the local ends (and of the arc's extreme points) in (r, z), then
+  // the ball around the axis point at mid height through the box's far corner.
+  double rmax = std::max(p.p0.x(), p.p1.x());
+  double zlo = std::min(p.p0.y(), p.p1.y()), zhi = std::max(p.p0.y(), p.p1.y());
+  if (!p.straight) {
+    rmax = std::max(rmax, p.c.x() + p.rho);
+    zlo = std::min(zlo, p.c.y() - p.rho);
+    zhi = std::max(zhi, p.c.y() + p.rho);
+  }
+  const double zm = 0.5 * (zlo + zhi);
+  *centre = p.o + zm * p.a;
+  return std::hypot(std::max(rmax, 0.0), 0.5 * (zhi - zlo));
+}
+
+}  // namespace revdist

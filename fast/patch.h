@@ -1,0 +1,61 @@
+// A patch of a solid's surface: one arc or segment of its biarc tree rotated
+// about the solid's axis (paper section 3): a toroidal patch (arc; a sphere zone
+// when the arc's centre is on the axis, a spindle patch when it is beyond it) or
+// a conical one (segment: cone, cylinder or flat annulus). World frame.
+#pragma once
+#include "core/arc2.h"
+#include "core/circle3.h"
+#include "core/vec.h"
+
+namespace revdist {
+
+struct Patch {
+  Vec3 o = Vec3::Zero();  // axis origin: world position of local (r, z) = (0, 0)
+  Vec3 a = Vec3::UnitZ(); // unit axis direction
+  bool straight = false;  // segment (cone) or arc (torus)
+  Vec2 p0 = Vec2::Zero(), p1 = Vec2::Zero();  // local (r, z) end points, r >= 0
+  // arc: centre c (c.r < 0 for a spindle, 0 for a sphere), radius rho, unit
+  // direction d0 from c to p0, signed sweep (> 0 counter-clockwise in (r, z)).
+  Vec2 c = Vec2::Zero();
+  double rho = 0.0;
+  Vec2 d0 = Vec2(1, 0);
+  double sweep = 0.0;
+  // segment: unit normal n and offset with n . q = off on the line.
+  Vec2 n = Vec2(0, 1);
+  double off = 0.0;
+};
+
+// The patch of `arc` (solid-local (r, z)) for a solid whose local frame maps to
+// the world by x = R * local + t. Straight arcs (curvature 0) give cones.
+Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t);
+
+// Local (rho, z) of a world point, and the unit radial direction of its
+// meridian half-plane (any unit vector normal to the axis when x is on it).
+Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r = nullptr);
+Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r);
+
+// The circle swept by the arc's centre (radius |c.r|; a point for a sphere).
+Circle3 patch_major_circle(const Patch& p);
+// The circle swept by end point i (0 or 1); radius 0 at a pole.
+Circle3 patch_end_circle(const Patch& p, int i);
+
+// Is local point q on the patch's arc or segment: within tol of its circle or
+// line, and inside its angular or parameter range?
+bool patch_contains_local(const Patch& p, const Vec2& q, double tol);
+
+// The signed function of the patch's whole surface of revolution (the full
+// torus or cone it lies on): |q - c| - rho for an arc, n . q - off for a segment.
+double patch_surface_function(const Patch& p, const Vec2& q);
+
+// A disk in (r, z) holding the patch's arc or segment (centre, radius): the
+// chord's midpoint and half chord for arcs up to a half turn, the arc's circle
+// beyond. Rotated, a solid torus around a circle holding the whole patch.
+void patch_disk(const Patch& p, Vec2* centre, double* radius);
+// The circle that disk's centre sweeps (world).
+Circle3 patch_disk_circle(const Patch& p, const Vec2& centre);
+
+// Radius of a ball around the patch's axis point at the patch's mean height that
+// holds the whole patch (used for root-finding ranges and quick rejection).
+double patch_extent(const Patch& p, Vec3* centre);
+
+}  // namespace revdist

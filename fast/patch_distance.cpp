@@ -1,0 +1,295 @@
+// Distance between two patches of revolution by enumeration of critical lines
+// (see the header for the argument).
+#include "fast/patch_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "fast/circle_distance.h"
+#include "fast/cone_normals.h"
+
+namespace revdist {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Side {
+  const Patch& P;
+  Circle3 end[2];
+  Circle3 major;  // arcs only
+  double tol;     // on-patch tolerance
+};
+
+// Candidate points and pairs, and the extremes of each patch's surface
+// function over the other patch.
+struct Collector {
+  const Patch& A;
+  const Patch& B;
+  double tol;
+  PatchPairResult res;
+  double gb_min = kInf, gb_max = -kInf;  // g_B over points of A
+  double ga_min = kInf, ga_max = -kInf;  // g_A over points of B
+
+  bool on_a(const Vec3& x) const { return patch_contains_local(A, patch_local(A, x), tol); }
+  bool on_b(const Vec3& y) const { return patch_contains_local(B, patch_local(B, y), tol); }
+  void point_a(const Vec3& x) {
+    const double g = patch_surface_function(B, patch_local(B, x));
+    if (g < gb_min) { gb_min = g; res.a_low = x; }
+    if (g > gb_max) { gb_max = g; res.a_high = x; }
+  }
+  void point_b(const Vec3& y) {
+    const double g = patch_surface_function(A, patch_local(A, y));
+    if (g < ga_min) { ga_min = g; res.b_low = y; }
+    if (g > ga_max) { ga_max = g; res.b_high = y; }
+  }
+  void pair(const Vec3& x, const Vec3& y) {
+    const double d = (x - y).norm();
+    if (!res.found || d < res.upper) {
+      res.found = true;
+      res.upper = d;
+      res.x = x;
+      res.y = y;
+    }
+  }
+};
+
+// The normal lines from world point x to straight patch K's whole cone: in x's
+// meridian plane of K the cone is two lines, the generator in x's half-plane and
+// its mirror in the opposite one, with one normal line from x to each. For each,
+// the foot (on the cone only when its r >= 0) and the unit direction along the
+// cone's normal. Returns 2.
+struct ConeNormal {
+  Vec3 foot;
+  bool foot_on_cone;
+  Vec3 dir;
+};
+int cone_normals_from(const Patch& K, const Vec3& x, ConeNormal out[2]) {
+  Vec3 er;
+  const Vec2 q = patch_local(K, x, &er);
+  int k = 0;
+  for (double side : {1.0, -1.0}) {
+    const Vec3 e = side * er;
+    const Vec2 qs(side * q.x(), q.y());
+    const Vec2 f = qs - (K.n.dot(qs) - K.off) * K.n;
+    out[k++] = {f.x() >= 0 ? patch_world(K, f, e) : x, f.x() >= 0, K.n.x() * e + K.n.y() * K.a};
+  }
+  return k;
+}
+
+// Binormal lines of two circles (point_a on p, point_b on q). When they form a
+// continuum (coaxial, Villarceau or meridian circles), the squared distance is
+// constant along it (a connected set of critical points of a smooth function),
+// and so is every candidate distance built on it; the part of the family inside
+// the patches' ranges is either the whole family or ends where a line meets a
+// patch boundary, which the boundary candidates hold. So members sampled around
+// q stand for the family: each joins a point of q to its nearest and farthest
+// points of p.
+std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q) {
+  bool infinite = false;
+  auto lines = circle3_circle3_binormal_lines(p, q, &infinite);
+  if (!infinite) return lines;
+  const Vec3 nq = q.normal.normalized(), np = p.normal.normalized();
+  const Vec3 any = std::abs(nq.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = nq.cross(any).normalized(), v = nq.cross(u);
+  constexpr int kSamples = 8;
+  for (int k = 0; k < kSamples; ++k) {
+    const double th = (k + 0.5) * (2 * M_PI / kSamples);
+    const Vec3 mq = q.center + q.radius * (std::cos(th) * u + std::sin(th) * v);
+    const Vec3 d = mq - p.center;
+    Vec3 h = d - d.dot(np) * np;
+    const double hn = h.norm();
+    h = hn > 0 ? Vec3(h / hn) : Vec3(np.cross(any).normalized());
+    for (double side : {1.0, -1.0}) {
+      const Vec3 mp = p.center + side * p.radius * h;
+      lines.push_back({mp, mq, (mq - mp).norm()});
+    }
+  }
+  return lines;
+}
+
+// Lines normal to torus patch T's major circle at m: the line from m along w, and
+// the two points m +- rho w of T's whole torus on it.
+void torus_points(const Patch& T, const Vec3& m, const Vec3& w, Vec3 out[2]) {
+  out[0] = m + T.rho * w;
+  out[1] = m - T.rho * w;
+}
+
+// Boundary circle E of one patch (`first` = it belongs to A) against the other
+// patch's interior.
+void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
+  const Patch& O = e_on_a ? c.B : c.A;  // the other patch
+  auto add = [&](const Vec3& e, const Vec3& o) {
+    if (e_on_a) c.pair(e, o); else c.pair(o, e);
+  };
+  auto add_e = [&](const Vec3& e) { if (e_on_a) c.point_a(e); else c.point_b(e); };
+  auto on_o = [&](const Vec3& p) { return e_on_a ? c.on_b(p) : c.on_a(p); };
+  if (O.straight) {
+    Vec3 pts[16];
+    bool deg = false;
+    const int n = circle_cone_critical(E, O, pts, &deg);
+    for (int i = 0; i < n; ++i) {
+      add_e(pts[i]);
+      ConeNormal cn[2];
+      const int nf = cone_normals_from(O, pts[i], cn);
+      for (int j = 0; j < nf; ++j)
+        if (cn[j].foot_on_cone && on_o(cn[j].foot)) add(pts[i], cn[j].foot);
+    }
+    return;
+  }
+  const auto lines = binormal_lines(E, patch_major_circle(O));
+  for (const auto& l : lines) {
+    const Vec3& e = l.point_a;
+    add_e(e);
+    const Vec3 d = l.point_b - e;
+    const double len = d.norm();
+    if (!(len > 0)) continue;
+    Vec3 ps[2];
+    torus_points(O, l.point_b, d / len, ps);
+    for (const Vec3& p : ps)
+      if (on_o(p)) add(e, p);
+  }
+}
+
+void interior_vs_interior(Collector& c) {
+  const Patch& A = c.A;
+  const Patch& B = c.B;
+  if (!A.straight && !B.straight) {
+    const auto lines = binormal_lines(patch_major_circle(A), patch_major_circle(B));
+    for (const auto& l : lines) {
+      const Vec3 d = l.point_b - l.point_a;
+      const double len = d.norm();
+      if (!(len > 0)) {
+        c.res.degenerate = true;  // the major circles meet: the tori overlap there
+        continue;
+      }
+      const Vec3 w = d / len;
+      Vec3 xs[2], ys[2];
+      torus_points(A, l.point_a, w, xs);
+      torus_points(B, l.point_b, w, ys);
+      bool xin[2], yin[2];
+      for (int i = 0; i < 2; ++i) {
+        xin[i] = c.on_a(xs[i]);
+        yin[i] = c.on_b(ys[i]);
+        if (xin[i]) c.point_a(xs[i]);
+        if (yin[i]) c.point_b(ys[i]);
+      }
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          if (xin[i] && yin[j]) c.pair(xs[i], ys[j]);
+    }
+    return;
+  }
+  if (A.straight && B.straight) {
+    Vec3 xs[16], ys[16];
+    bool deg = false;
+    int n = cone_cone_normals(A, B, xs, ys, &deg);
+    if (deg) c.res.degenerate = true;
+    // NaN feet fail every membership test.
+    for (int i = 0; i < n; ++i) {
+      const bool yin = c.on_b(ys[i]);
+      if (yin) c.point_b(ys[i]);
+      if (yin && c.on_a(xs[i])) c.pair(xs[i], ys[i]);
+    }
+    n = cone_cone_normals(B, A, ys, xs, &deg);
+    if (deg) c.res.degenerate = true;
+    for (int i = 0; i < n; ++i) {
+      const bool xin = c.on_a(xs[i]);
+      if (xin) c.point_a(xs[i]);
+      if (xin && c.on_b(ys[i])) c.pair(xs[i], ys[i]);
+    }
+    return;
+  }
+  // One torus T, one cone K: normals of K through critical points of T's major circle.
+  const bool a_is_torus = !A.straight;
+  const Patch& T = a_is_torus ? A : B;
+  const Patch& K = a_is_torus ? B : A;
+  Vec3 ms[16];
+  bool deg = false;
+  const int n = circle_cone_critical(patch_major_circle(T), K, ms, &deg);
+  (void)deg;  // h constant on the major circle: the points returned represent it (see cone_normals.h)
+  for (int i = 0; i < n; ++i) {
+    ConeNormal cn[2];
+    const int nf = cone_normals_from(K, ms[i], cn);
+    for (int j = 0; j < nf; ++j) {
+      const bool foot_in = cn[j].foot_on_cone && (a_is_torus ? c.on_b(cn[j].foot) : c.on_a(cn[j].foot));
+      if (foot_in) { if (a_is_torus) c.point_b(cn[j].foot); else c.point_a(cn[j].foot); }
+      // The torus points on this normal line: critical points of K's surface
+      // function over T (whether or not the line reaches K's patch), and with
+      // the foot a critical pair.
+      Vec3 ts[2];
+      torus_points(T, ms[i], cn[j].dir, ts);
+      for (const Vec3& t : ts) {
+        const bool t_in = a_is_torus ? c.on_a(t) : c.on_b(t);
+        if (!t_in) continue;
+        if (a_is_torus) c.point_a(t); else c.point_b(t);
+        if (foot_in) { if (a_is_torus) c.pair(t, cn[j].foot); else c.pair(cn[j].foot, t); }
+      }
+    }
+  }
+}
+
+// Points where patch P crosses the other patch O's axis or, for a torus O, its
+// major circle: there O's surface function is not smooth (a distance to a line
+// or a circle), so its extremes over P may sit there.
+void nonsmooth_points(Collector& c, bool on_a) {
+  const Patch& P = on_a ? c.A : c.B;
+  const Patch& O = on_a ? c.B : c.A;
+  Vec3 centre;
+  const double ext = patch_extent(P, &centre);
+  // The axis line of O, from its point nearest to P's centre.
+  const Vec3 p = O.o + (centre - O.o).dot(O.a) * O.a;
+  Vec3 pts[16];
+  auto add = [&](int n) {
+    for (int i = 0; i < n; ++i)
+      if (on_a ? c.on_a(pts[i]) : c.on_b(pts[i])) {
+        if (on_a) c.point_a(pts[i]); else c.point_b(pts[i]);
+      }
+  };
+  if (!O.straight) add(circle_surface_intersections(patch_major_circle(O), P, pts));
+  if ((p - centre).norm() <= ext) add(line_surface_intersections(p, O.a, 2 * ext, P, pts));
+}
+
+}  // namespace
+
+double patch_disk_bound(const Patch& A, const Patch& B) {
+  Vec2 ca, cb;
+  double ra, rb;
+  patch_disk(A, &ca, &ra);
+  patch_disk(B, &cb, &rb);
+  return circle3_circle3_distance(patch_disk_circle(A, ca), patch_disk_circle(B, cb)).distance - ra - rb;
+}
+
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B) {
+  Vec3 ca, cb;
+  const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
+  const double scale = std::max({ea, eb, (ca - cb).norm(), 1e-300});
+  // Points built on the patches are on them to a few ulps of the coordinates.
+  const double coord = std::max({ca.cwiseAbs().maxCoeff(), cb.cwiseAbs().maxCoeff(), scale});
+  Collector c{A, B, 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() * coord, {}};
+
+  const Circle3 ea_c[2] = {patch_end_circle(A, 0), patch_end_circle(A, 1)};
+  const Circle3 eb_c[2] = {patch_end_circle(B, 0), patch_end_circle(B, 1)};
+  for (const auto& e : ea_c)
+    for (const auto& f : eb_c) {
+      const auto r = circle3_circle3_distance(e, f);
+      c.pair(r.point_a, r.point_b);
+      c.point_a(r.point_a);
+      c.point_b(r.point_b);
+    }
+  for (const auto& e : ea_c) boundary_vs_interior(c, e, true);
+  for (const auto& f : eb_c) boundary_vs_interior(c, f, false);
+  interior_vs_interior(c);
+  nonsmooth_points(c, true);
+  nonsmooth_points(c, false);
+
+  // Rounding of the surface functions: a few ulps of the coordinates.
+  const double gtol = 1024 * std::numeric_limits<double>::epsilon() * coord;
+  c.res.separated = !c.res.degenerate && (c.gb_min > gtol || c.gb_max < -gtol || c.ga_min > gtol ||
+                                          c.ga_max < -gtol || patch_disk_bound(A, B) > gtol);
+  return c.res;
+}
+
+}  // namespace revdist

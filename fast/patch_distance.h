@@ -1,0 +1,46 @@
+// Distance between two patches of revolution (toroidal or conical), the leaf
+// kernel of the distance query (paper section 3, "l +- r1 +- r2", extended to
+// patch boundaries, cones and intersection).
+//
+// Every critical pair (x, y), x != y, of |x - y| on two patches lies on a line
+// normal to both: interior-interior pairs on a binormal of the major circles
+// (torus-torus), a normal of a cone through a critical point of a major circle
+// (torus-cone, fast/cone_normals.h) or a common normal of two cones; a boundary
+// circle against an interior on a binormal of the circle and the major circle
+// or a circle-cone normal; boundary against boundary at a circle-circle
+// distance. The minimum over those candidates is the distance unless the
+// patches intersect. Intersection is excluded by the sign of the other patch's
+// surface function (|q - c| - rho, or n . q - off) over the patch: its extremes
+// lie at the same candidate points plus the points where the patch crosses the
+// other solid's axis or the other torus's major circle (where that function is
+// not smooth). Cones and flat annuli lie on unbounded surfaces that a patch may
+// cross far from the other patch; the patches' bounding tori (patch_disk) being
+// disjoint separates them too.
+#pragma once
+#include "fast/patch.h"
+
+namespace revdist {
+
+struct PatchPairResult {
+  double upper = 0.0;     // |x - y| of the best candidate: genuine points of both patches (to rounding)
+  Vec3 x = Vec3::Zero();  // on patch A
+  Vec3 y = Vec3::Zero();  // on patch B
+  bool found = false;     // some candidate pair exists (always, unless a patch is empty)
+  // Proven (to rounding) that the patches do not meet: then `upper` is their distance.
+  bool separated = false;
+  // An infinite family of critical lines (coaxial or Villarceau major circles,
+  // a degenerate cone system): `upper` is valid, but the distance may be smaller.
+  bool degenerate = false;
+  // Where the other patch's surface function is smallest and largest over each
+  // patch: the points most likely to lie inside the other solid when the
+  // patches cross (probes for an overlap proof).
+  Vec3 a_low = Vec3::Zero(), a_high = Vec3::Zero();  // on A, extremes of B's function
+  Vec3 b_low = Vec3::Zero(), b_high = Vec3::Zero();  // on B, extremes of A's function
+};
+
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B);
+
+// Lower bound on the distance between two patches from their bounding tori.
+double patch_disk_bound(const Patch& A, const Patch& B);
+
+}  // namespace revdist

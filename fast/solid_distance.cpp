@@ -1,0 +1,384 @@
+// Solid-solid distance: Algorithm 2 of the paper with proven bounds.
+//
+// Parts. A part is a tree node or, below the tree's leaves, a refinement of a
+// leaf's fit (half its parameter span, refitted). Every part has a bounding
+// disk in (r, z) (from its capsule); rotated, the disk is a solid torus around
+// a circle, so two parts are at least circle_distance - radii apart. Parts with
+// a fit (leaves and refinements) are compared exactly: the distance between
+// their arcs' patches (fast/patch_distance.h) minus both proven eps is a lower
+// bound for the true surfaces when the patches are proven apart; the patches'
+// closest points mapped onto the input curves give genuine surface points and
+// so an upper bound.
+//
+// Solids, not surfaces (SPEC section 2): once the surfaces are proven apart, a
+// point of each surface is tested against the other solid (profile_side); a
+// point strictly inside proves an overlap, and is also tried on patches that
+// could not be separated.
+#include "fast/solid_distance.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <vector>
+
+#include "core/curve_eval.h"
+#include "fast/biarc_fit.h"
+#include "fast/circle_distance.h"
+#include "fast/patch.h"
+#include "fast/patch_distance.h"
+#include "fast/profile_side.h"
+
+namespace revdist {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Part {
+  std::int32_t node = -1;   // tree node, -1 for a refinement
+  bool has_fit = false;     // leaves and refinements: compared by patches
+  BiarcFit fit;
+  Vec2 disk_c = Vec2::Zero();
+  double disk_r = 0.0;
+  std::int32_t child = -1;  // first of the two child parts once split
+  int level = 0;            // refinement levels below the tree leaf
+};
+
+// One side of the query: the solid, its parts and cached world data.
+struct Solid {
+  const PosedSolid& s;
+  std::vector<Part> parts;
+  Vec3 axis;
+  double slack;  // rounding allowance of refitted bounds (as the tree builder's)
+  double max_eps = 0.0;
+
+  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()) {
+    double scale = 0.0;
+    for (const Piece& p : ps.profile->pieces)
+      for (const Vec2& q : p.points) scale = std::max({scale, std::abs(q.x()), std::abs(q.y())});
+    slack = 64.0 * DBL_EPSILON * scale;
+    for (const BiarcFit& f : ps.tree->fits) max_eps = std::max(max_eps, f.eps);
+    parts.reserve(256);
+    parts.push_back(from_node(0, 0));
+  }
+
+  Part from_node(std::int32_t node, int level) const {
+    const BiarcNode& n = s.tree->nodes[node];
+    Part p;
+    p.node = node;
+    p.level = level;
+    p.disk_c = 0.5 * (n.seg_a + n.seg_b);
+    p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
+    if (n.leaf() && n.fit >= 0) {
+      p.has_fit = true;
+      p.fit = s.tree->fits[n.fit];
+    }
+    return p;
+  }
+
+  // The circle the part's disk centre sweeps, in the world.
+  Circle3 disk_circle(const Part& p) const {
+    return {s.t + p.disk_c.y() * axis, axis, std::max(p.disk_c.x(), 0.0)};
+  }
+
+  bool can_split(const Part& p, int max_refine) const {
+    if (!p.has_fit) return true;
+    return p.level < max_refine && p.fit.u1 > p.fit.u0 && p.disk_r > 0;
+  }
+
+  // Splits part i (memoised: the children are shared by every pair).
+  std::int32_t split(std::int32_t i, long* refined) {
+    if (parts[i].child >= 0) return parts[i].child;
+    const Part p = parts[i];  // copy: push_back may reallocate
+    Part c0, c1;
+    if (!p.has_fit) {
+      const std::int32_t tc = s.tree->nodes[p.node].child;
+      c0 = from_node(tc, 0);
+      c1 = from_node(tc + 1, 0);
+    } else {
+      refine(p, &c0, &c1);
+      *refined += 2;
+    }
+    const auto k = static_cast<std::int32_t>(parts.size());
+    parts.push_back(c0);
+    parts.push_back(c1);
+    parts[i].child = k;
+    return k;
+  }
+
+  // Half-span refinements of a fit: a curve is refitted with a biarc under the
+  // same lens bound as the tree; an exact line or arc is cut in two.
+  void refine(const Part& p, Part* c0, Part* c1) const {
+    const Piece& piece = s.profile->pieces[p.fit.piece];
+    const double u0 = p.fit.u0, u1 = p.fit.u1, um = 0.5 * (u0 + u1);
+    SpanEnds e;
+    e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
+    e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);
+    SpanEnds left = e, right = e;
+    left.p1 = piece_tangent(piece, um, +1, &left.t1, &left.k1);
+    right.p0 = left.p1;
+    right.t0 = left.t1;
+    right.k0 = left.k1;
+    Part* out[2] = {c0, c1};
+    const SpanEnds* ends[2] = {&left, &right};
+    const double us[3] = {u0, um, u1};
+    for (int h = 0; h < 2; ++h) {
+      Part& c = *out[h];
+      c.level = p.level + 1;
+      c.has_fit = true;
+      BiarcFit& f = c.fit;
+      f = p.fit;
+      f.u0 = us[h];
+      f.u1 = us[h + 1];
+      const LensBound lens = lens_bound(*ends[h]);
+      if (p.fit.kind == SpanKind::curve) {
+        const Vec2 mid = piece_point(piece, 0.5 * (f.u0 + f.u1));
+        const Biarc b = fit_curve_biarc(piece, f.u0, f.u1, *ends[h], mid);
+        f.arc[0] = b.arc[0];
+        f.arc[1] = b.arc[1];
+        f.arcs = 2;
+        f.eps = lens.hypotheses_ok ? lens.width + slack : kInf;
+      } else {
+        const Arc2& a = p.fit.arc[0];
+        const double half = 0.5 * a.length;
+        f.arc[0] = h == 0 ? Arc2{a.start, a.tangent, a.curvature, half}
+                          : Arc2{a.point(half), a.tangent_at(half), a.curvature, half};
+        f.arc[1] = Arc2{f.arc[0].end(), f.arc[0].end_tangent(), a.curvature, 0.0};
+        f.arcs = 1;
+      }
+      Capsule cap = lens_capsule(*ends[h], lens);
+      if (!lens.hypotheses_ok) cap.radius = kInf;
+      c.disk_c = 0.5 * (cap.a + cap.b);
+      c.disk_r = 0.5 * (cap.b - cap.a).norm() + cap.radius + slack;
+    }
+  }
+
+  // The point of the input curve nearest to patch point x (world) within the
+  // fit's span, mapped back to the world at x's azimuth: a genuine surface point.
+  Vec3 true_point(const BiarcFit& f, const Vec3& x) const {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    const double rho = std::hypot(d.x(), d.y());
+    const Vec2 q(rho, d.z());
+    const Piece& piece = s.profile->pieces[f.piece];
+    const Vec2 c0 = piece_point(piece, f.u0), c1 = piece_point(piece, f.u1);
+    const Vec2 chord = c1 - c0;
+    const double l2 = chord.squaredNorm();
+    double u = f.u0 + (l2 > 0 ? std::clamp((q - c0).dot(chord) / l2, 0.0, 1.0) : 0.5) * (f.u1 - f.u0);
+    Vec2 best = (q - c0).squaredNorm() < (q - c1).squaredNorm() ? c0 : c1;
+    Vec2 der[3];
+    for (int it = 0; it < 12; ++it) {
+      piece_derivatives(piece, u, 2, der);
+      const Vec2 r = der[0] - q;
+      if (r.squaredNorm() < (q - best).squaredNorm()) best = der[0];
+      const double g = r.dot(der[1]);
+      const double h = der[1].squaredNorm() + r.dot(der[2]);
+      if (!(h > 0)) break;
+      const double un = std::clamp(u - g / h, f.u0, f.u1);
+      if (un == u) break;
+      u = un;
+    }
+    piece_derivatives(piece, u, 0, der);
+    if ((der[0] - q).squaredNorm() < (best - q).squaredNorm()) best = der[0];
+    const Vec3 er = rho > 0 ? Vec3(d.x() / rho, d.y() / rho, 0) : Vec3::UnitX();
+    const Vec3 local(std::max(best.x(), 0.0) * er.x(), std::max(best.x(), 0.0) * er.y(), best.y());
+    return s.R * local + s.t;
+  }
+
+  // A genuine point of this solid's surface (the profile's first point at azimuth 0).
+  Vec3 some_surface_point() const {
+    const Vec2 p = s.profile->pieces.front().start();
+    return s.R * Vec3(p.x(), 0, p.y()) + s.t;
+  }
+
+  // Side of world point x for this solid (true profile; unknown within margin).
+  Side side_of(const Vec3& x, double margin) const {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    return profile_side(*s.tree, Vec2(std::hypot(d.x(), d.y()), d.z()), margin);
+  }
+};
+
+struct Entry {
+  double lb;
+  std::int32_t a, b;
+  bool operator<(const Entry& o) const { return lb > o.lb; }  // min-heap
+};
+
+double disk_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
+  const Circle3 ca = A.disk_circle(pa), cb = B.disk_circle(pb);
+  // Bounding spheres first: cheaper than the circle distance.
+  const double sphere = (ca.center - cb.center).norm() - (ca.radius + pa.disk_r) - (cb.radius + pb.disk_r);
+  if (sphere > 0) return sphere;
+  return circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r;
+}
+
+}  // namespace
+
+SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, const DistanceOptions& opt) {
+  SolidDistanceResult res;
+  if (!pa.tree || !pb.tree || pa.tree->nodes.empty() || pb.tree->nodes.empty()) {
+    res.reason = "empty profile";
+    return res;
+  }
+  Solid A(pa), B(pb);
+  DistanceStats& st = res.stats;
+  // Rounding of world coordinates: a few ulps of the largest one involved.
+  const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(),
+                                 A.parts[0].disk_c.norm() + A.parts[0].disk_r,
+                                 B.parts[0].disk_c.norm() + B.parts[0].disk_r});
+  const double round = 256 * DBL_EPSILON * coord;
+
+  auto proven_overlap = [&](const Vec3& p) {
+    res.overlap = true;
+    res.converged = true;
+    res.lower = res.upper = res.distance = 0.0;
+    res.point_a = res.point_b = p;
+    return res;
+  };
+
+  double ub = kInf;
+  auto offer = [&](const Vec3& x, const Vec3& y) {
+    const double d = (x - y).norm();
+    if (d < ub) {
+      ub = d;
+      res.point_a = x;
+      res.point_b = y;
+    }
+  };
+
+  // Containment: a surface point of one solid strictly inside the other.
+  bool containment_unknown = false;
+  {
+    const Vec3 x = A.some_surface_point(), y = B.some_surface_point();
+    const Side sa = B.side_of(x, round), sb = A.side_of(y, round);
+    if (sa == Side::inside) return proven_overlap(x);
+    if (sb == Side::inside) return proven_overlap(y);
+    containment_unknown = sa == Side::unknown || sb == Side::unknown;
+  }
+
+  std::priority_queue<Entry> heap;
+  heap.push({disk_bound(A, A.parts[0], B, B.parts[0]), 0, 0});
+  double settled_lb = kInf;  // min lower bound over pairs retired without a split
+  bool unresolved = false;
+
+  auto push_pair = [&](std::int32_t ia, std::int32_t ib) {
+    const double lb = disk_bound(A, A.parts[ia], B, B.parts[ib]);
+    if (lb >= ub - opt.tol) settled_lb = std::min(settled_lb, lb);
+    else heap.push({lb, ia, ib});
+  };
+
+  while (!heap.empty()) {
+    const Entry e = heap.top();
+    if (e.lb >= ub - opt.tol) break;  // every remaining pair is at least e.lb away
+    heap.pop();
+    if (++st.node_pairs > opt.max_node_pairs) {
+      res.reason = "work budget exhausted";
+      settled_lb = std::min(settled_lb, e.lb);
+      unresolved = true;
+      break;
+    }
+    const Part& qa = A.parts[e.a];
+    const Part& qb = B.parts[e.b];
+    if (!(qa.has_fit && qb.has_fit)) {
+      // Descend: split the part without a fit, or the bigger one.
+      const bool split_a = !qa.has_fit && (qb.has_fit || qa.disk_r >= qb.disk_r);
+      if (split_a) {
+        const std::int32_t c = A.split(e.a, &st.refined);
+        push_pair(c, e.b);
+        push_pair(c + 1, e.b);
+      } else {
+        const std::int32_t c = B.split(e.b, &st.refined);
+        push_pair(e.a, c);
+        push_pair(e.a, c + 1);
+      }
+      continue;
+    }
+
+    // Two fits: their patches, exactly.
+    ++st.leaf_pairs;
+    double lb_pair = kInf;
+    bool all_separated = true;
+    const BiarcFit fa = qa.fit, fb = qb.fit;
+    for (int i = 0; i < fa.arcs; ++i) {
+      if (fa.arc[i].length <= 0) continue;
+      const Patch P = make_patch(fa.arc[i], pa.R, pa.t);
+      for (int j = 0; j < fb.arcs; ++j) {
+        if (fb.arc[j].length <= 0) continue;
+        const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
+        // The patches' bounding tori first: most pairs end here.
+        const double disk = patch_disk_bound(P, Q) - fa.eps - fb.eps - round;
+        if (disk >= ub - opt.tol) {
+          lb_pair = std::min(lb_pair, disk);
+          continue;
+        }
+        ++st.patch_pairs;
+        const PatchPairResult r = patch_pair_distance(P, Q);
+        if (r.found) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
+        if (r.separated) {
+          lb_pair = std::min(lb_pair, std::max(disk, r.upper - fa.eps - fb.eps - round));
+          continue;
+        }
+        all_separated = false;
+        lb_pair = std::min(lb_pair, std::max(disk, 0.0));
+        // The patches may cross: try to prove that the solids overlap.
+        for (const Vec3& x : {r.a_low, r.a_high}) {
+          const Vec3 t = A.true_point(fa, x);
+          if (B.side_of(t, round) == Side::inside) return proven_overlap(t);
+        }
+        for (const Vec3& y : {r.b_low, r.b_high}) {
+          const Vec3 t = B.true_point(fb, y);
+          if (A.side_of(t, round) == Side::inside) return proven_overlap(t);
+        }
+      }
+    }
+    if (lb_pair >= ub - opt.tol) {
+      settled_lb = std::min(settled_lb, lb_pair);
+      continue;
+    }
+    // Not resolved: refine the part that limits the bound.
+    const bool a_ok = A.can_split(qa, opt.max_refine), b_ok = B.can_split(qb, opt.max_refine);
+    bool split_a;
+    if (all_separated) split_a = fa.eps >= fb.eps;      // the fit errors are what is left
+    else split_a = qa.disk_r >= qb.disk_r;              // patches too big to separate
+    if (split_a && !a_ok) split_a = false;
+    if (!split_a && !b_ok) split_a = a_ok;
+    if (!a_ok && !b_ok) {
+      settled_lb = std::min(settled_lb, lb_pair);
+      unresolved = true;
+      if (res.reason.empty())
+        res.reason = all_separated ? "refinement limit reached" : "patches could not be separated (degenerate contact)";
+      continue;
+    }
+    if (split_a) {
+      const std::int32_t c = A.split(e.a, &st.refined);
+      push_pair(c, e.b);
+      push_pair(c + 1, e.b);
+    } else {
+      const std::int32_t c = B.split(e.b, &st.refined);
+      push_pair(e.a, c);
+      push_pair(e.a, c + 1);
+    }
+  }
+
+  double lb = settled_lb;
+  if (!heap.empty()) lb = std::min(lb, heap.top().lb);
+  if (containment_unknown) lb = 0.0;
+  lb = std::max(lb, 0.0);
+  if (!(ub < kInf)) {
+    res.reason = "no candidate pair found";
+    res.lower = lb;
+    res.upper = kInf;
+    res.distance = kInf;
+    return res;
+  }
+  lb = std::min(lb, ub);
+  res.lower = lb;
+  res.upper = ub;
+  res.distance = 0.5 * (lb + ub);
+  res.converged = !unresolved && ub - lb <= opt.tol;
+  if (!res.converged && res.reason.empty()) res.reason = "bracket wider than tol";
+  return res;
+}
+
+}  // namespace revdist
