@@ -141,6 +141,12 @@ std::vector<Hom> to_homogeneous(const BezierSegment& s) {
 
 }  // namespace
 
+// The point of arc g at angle a, from its first point p0 along the chord.
+static Vec2 arc_point_from_start(const Vec2& p0, const ArcGeometry& g, double a) {
+  const double half = 0.5 * (a - g.start_angle), mid = 0.5 * (a + g.start_angle);
+  return p0 + 2 * g.radius * std::sin(half) * Vec2(-std::sin(mid), std::cos(mid));
+}
+
 std::vector<BezierSegment> piece_bezier_segments(const Piece& piece) {
   std::vector<BezierSegment> out;
   switch (piece.kind) {
@@ -154,11 +160,13 @@ std::vector<BezierSegment> piece_bezier_segments(const Piece& piece) {
       const double phi = g.sweep / m;
       const double w = std::cos(phi / 2);  // > 0: |phi| <= 90 degrees
       for (int k = 0; k < m; ++k) {
-        const double a0 = g.start_angle + k * phi, am = a0 + phi / 2, a1 = a0 + phi;
+        const double a0 = g.start_angle + k * phi, a1 = a0 + phi;
         BezierSegment s;
-        s.points = {g.center + g.radius * Vec2(std::cos(a0), std::sin(a0)),
-                    g.center + (g.radius / w) * Vec2(std::cos(am), std::sin(am)),
-                    g.center + g.radius * Vec2(std::cos(a1), std::sin(a1))};
+        // Points from p0 along chords (see piece_derivatives: a far centre would
+        // cost R * ulp); the middle control point is the tangents' crossing.
+        const Vec2 q0 = arc_point_from_start(piece.points[0], g, a0);
+        s.points = {q0, q0 + g.radius * std::tan(phi / 2) * Vec2(-std::sin(a0), std::cos(a0)),
+                    arc_point_from_start(piece.points[0], g, a1)};
         s.weights = {1.0, w, 1.0};
         s.u0 = static_cast<double>(k) / m;
         s.u1 = static_cast<double>(k + 1) / m;
@@ -261,7 +269,11 @@ void piece_derivatives(const Piece& piece, double u, int n, Vec2* out) {
       const ArcGeometry g = arc_geometry(piece);
       const double th = g.start_angle + u * g.sweep;
       const double c = std::cos(th), s = std::sin(th);
-      out[0] = g.center + g.radius * Vec2(c, s);
+      // From p0 along the chord, not centre + R (cos, sin): for a nearly
+      // straight arc the centre is far away (R up to 1e7 and more) and the
+      // latter would carry R * ulp of error; the chord 2R sin(delta/2) is small
+      // and exact to a few ulps of itself.
+      out[0] = arc_point_from_start(piece.points[0], g, th);
       // d/du (cos, sin) = sweep (-sin, cos): each derivative rotates by 90 degrees.
       double f = g.radius;
       Vec2 dir(c, s);

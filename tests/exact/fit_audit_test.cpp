@@ -175,18 +175,17 @@ TEST(FitAudit, NearlyStraightArcPiece) {
   const TreeAudit t = audit_leaves(leaves, &per, true);
   EXPECT_EQ(t.certified, t.leaves) << t.first_problem_reason;
   EXPECT_LE(per[0].certified_error, kExactTol);
-  // The second half starts at the double C(0.5) = centre + R (cos, sin), which is
-  // ~7e-10 (R x ulp) off the exact circle: the audit proves it (lower bound).
+  // The second half starts at the double C(0.5), computed along the chord from
+  // p0: on the exact circle to rounding, although the centre is 1.25e7 away.
   EXPECT_GE(per[1].certified_error, per[1].lower_bound);
-  EXPECT_GT(per[1].lower_bound, 1e-10);
+  EXPECT_LE(per[1].certified_error, kExactTol);
 }
 
-// FITTER BUG (found by this audit; owner: core/curve_eval arc evaluation and the
-// fast/biarc_tree rounding slack): leaf [0.5, 1] claims 64 ulp x (coordinate
-// scale) = 1.4e-14 but its start point is off the exact arc by a proven
-// 6.9e-10, because arc points are evaluated as centre + R (cos, sin) with a
-// centre 1.25e7 away. Enable when fixed.
-TEST(FitAudit, DISABLED_NearlyStraightArcPieceWithinClaim) {
+// Regression (found by this audit): leaf [0.5, 1] claimed 64 ulp x (coordinate
+// scale) = 1.4e-14 but its start point was off the exact arc by a proven
+// 6.9e-10, because arc points were evaluated as centre + R (cos, sin) with a
+// centre 1.25e7 away. core/curve_eval now walks the chord from p0.
+TEST(FitAudit, NearlyStraightArcPieceWithinClaim) {
   const Profile prof = nearly_straight_arc();
   const BiarcTree tree = build_biarc_tree(prof, 1e-5);
   const TreeAudit t = audit_leaves(biarc_tree_leaves(prof, tree));
