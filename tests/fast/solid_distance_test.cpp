@@ -1,0 +1,480 @@
+// The fast solid distance (fast/solid_distance, paper section 4.2, Alg. 2)
+// against what can be known without it: closed forms (cases/distance/, one
+// test per file), an exhaustive loop over every leaf pair of the same trees, a
+// dense brute force on the true surfaces, metamorphic relations (swap, rigid
+// motion, scale by 2^k, reversed profile) and the certificates of SPEC section 6
+// (witnesses on the true surfaces, overlap = a shared point).
+//
+// Tolerances: brackets are compared with `round` = 1e-12 * the query's
+// coordinate scale (the engine's own rounding allowance is 256 ulps of the
+// largest coordinate, ~6e-14 * scale; 1e-12 leaves room for the test's own
+// world transforms), and the witness-on-surface check with 1e-9 * scale (the
+// engine projects onto the curve by 12 Newton steps; rounding of R^T (x - t)).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/case_io.h"
+#include "fast/biarc_tree.h"
+#include "fast/case_model.h"
+#include "fast/patch.h"
+#include "fast/patch_distance.h"
+#include "fast/solid_distance.h"
+#include "solid_test_util.h"
+
+namespace revdist {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace solid_test;
+
+constexpr double kEps = 1e-5;  // the paper's working accuracy
+constexpr double kTol = 1e-6;
+
+std::vector<std::string> json_files(const std::string& dir) {
+  std::vector<std::string> out;
+  const fs::path p = source_path(dir);
+  if (!fs::exists(p)) return out;
+  for (const auto& e : fs::directory_iterator(p))
+    if (e.path().extension() == ".json") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string stem(const std::string& path) { return fs::path(path).stem().string(); }
+
+// The per-query expectations a case file may carry beside its revdist/1 data
+// (unknown top-level keys are ignored by read_case): "expected": {"a-b": d},
+// "expected_overlap": {"a-b": true}.
+struct Expectations {
+  std::map<std::string, double> distance;
+  std::map<std::string, bool> overlap;
+};
+
+Expectations read_expectations(const std::string& path) {
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  Expectations e;
+  if (j.contains("expected"))
+    for (auto it = j["expected"].begin(); it != j["expected"].end(); ++it) e.distance[it.key()] = it.value();
+  if (j.contains("expected_overlap"))
+    for (auto it = j["expected_overlap"].begin(); it != j["expected_overlap"].end(); ++it)
+      e.overlap[it.key()] = it.value();
+  return e;
+}
+
+// A loaded case with its trees at eps.
+struct Loaded {
+  Case c;
+  CaseModel m;
+  std::vector<std::unique_ptr<ProfileSampler>> samplers;  // per instance
+  Loaded(const std::string& path, double eps) : c(read_case(path)), m(build_case_model(c, eps)) {
+    for (const PosedSolid& s : m.instances) samplers.push_back(std::make_unique<ProfileSampler>(*s.profile, 4000));
+  }
+  std::string key(std::size_t q) const {
+    return c.instances[c.queries[q].first].name + "-" + c.instances[c.queries[q].second].name;
+  }
+};
+
+// Every check that needs no expected value: the bracket is ordered, tol holds
+// when converged, witnesses certify, and the brute force on the true surfaces
+// is never below `lower`. Returns the brute-force value.
+double check_query(const PosedSolid& A, const PosedSolid& B, const ProfileSampler& sa, const ProfileSampler& sb,
+                   const SolidDistanceResult& r, double tol, const std::string& what, bool brute = true) {
+  const double scale = query_scale(A, B);
+  const double round = 1e-12 * scale;
+  SCOPED_TRACE(what + " " + describe(r));
+  if (r.converged) { EXPECT_LE(r.upper - r.lower, tol + round); }
+  expect_certificates(A, B, r, sa, sb, 1e-9 * scale, what);
+  if (!brute) return INFINITY;
+  const BruteResult b = brute_surface_distance(A, B);
+  EXPECT_LE(r.lower, b.distance + round) << "lower exceeds a genuine pair of surface points: brute "
+                                          << b.distance << " at x=" << b.x_W.transpose() << " y=" << b.y_W.transpose()
+                                          << "\n A " << describe_pose(A) << "\n B " << describe_pose(B);
+  return b.distance;
+}
+
+// ---------------------------------------------------------------------------
+// 1. Closed forms: cases/distance/*.json, one test per file (and the regressions).
+
+void run_closed_form(const std::string& path) {
+  const Expectations ex = read_expectations(path);
+  for (const double eps : {1e-3, kEps}) {
+    Loaded L(path, eps);
+    for (std::size_t q = 0; q < L.c.queries.size(); ++q) {
+      const auto [ia, ib] = L.c.queries[q];
+      const PosedSolid &A = L.m.instances[ia], &B = L.m.instances[ib];
+      const std::string key = L.key(q);
+      char what[256];
+      std::snprintf(what, sizeof what, "%s query %s eps=%g", stem(path).c_str(), key.c_str(), eps);
+      const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
+      const double scale = query_scale(A, B);
+      const double round = 1e-12 * scale;
+      const double brute = check_query(A, B, *L.samplers[ia], *L.samplers[ib], r, kTol, what);
+      SCOPED_TRACE(std::string(what) + " " + describe(r));
+      // Swapped arguments: the same bracket, up to tol (both contain the truth).
+      const SolidDistanceResult s = solid_distance(B, A, DistanceOptions{kTol});
+      EXPECT_LE(std::max(r.lower, s.lower), std::min(r.upper, s.upper) + round) << "swap: " << describe(s);
+      EXPECT_EQ(r.overlap, s.overlap) << "swap: " << describe(s);
+      const auto e = ex.distance.find(key);
+      if (e == ex.distance.end()) continue;
+      const double d = e->second;
+      std::printf("[ query    ] %-40s expected %.17g  lower-d %+.3g  upper-d %+.3g  brute-d %+.3g  %s%s\n", what, d,
+                  r.lower - d, r.upper - d, brute - d, r.overlap ? "overlap " : "", r.converged ? "" : r.reason.c_str());
+      EXPECT_LE(r.lower, d + round);
+      EXPECT_GE(r.upper, d - round);
+      const bool overlap = ex.overlap.count(key) && ex.overlap.at(key);
+      if (overlap) { EXPECT_TRUE(r.overlap) << "the solids share interior points"; }
+      if (d > 0 || overlap) { EXPECT_TRUE(r.converged) << "reason: " << r.reason; }
+      else if (!r.converged) std::printf("[ note     ] %s touching: not converged (%s)\n", what, r.reason.c_str());
+      // The derivation, checked by the brute force: a genuine pair, close to d.
+      EXPECT_GE(brute, d - round) << "brute force below the closed form: the derivation is wrong";
+      if (d > 0) { EXPECT_LE(brute, d + 1e-7 * scale) << "brute force far above the closed form"; }
+    }
+  }
+}
+
+void run_regression(const std::string& path) {
+  const Expectations ex = read_expectations(path);
+  Loaded L(path, kEps);
+  for (std::size_t q = 0; q < L.c.queries.size(); ++q) {
+    const auto [ia, ib] = L.c.queries[q];
+    const PosedSolid &A = L.m.instances[ia], &B = L.m.instances[ib];
+    const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
+    check_query(A, B, *L.samplers[ia], *L.samplers[ib], r, kTol, stem(path) + " " + L.key(q));
+    const auto e = ex.distance.find(L.key(q));
+    if (e != ex.distance.end()) {
+      const double round = 1e-12 * query_scale(A, B);
+      EXPECT_LE(r.lower, e->second + round) << describe(r);
+      EXPECT_GE(r.upper, e->second - round) << describe(r);
+    }
+  }
+}
+
+class DataTest : public ::testing::Test {
+ public:
+  DataTest(std::string path, void (*run)(const std::string&)) : path_(std::move(path)), run_(run) {}
+  void TestBody() override { run_(path_); }
+
+ private:
+  std::string path_;
+  void (*run_)(const std::string&);
+};
+
+// One named test per data file (manifold's habit): a new case is a new test.
+const bool registered = [] {
+  for (const std::string& p : json_files("cases/distance"))
+    ::testing::RegisterTest("SolidDistanceClosedForm", stem(p).c_str(), nullptr, nullptr, __FILE__, __LINE__,
+                            [p]() -> ::testing::Test* { return new DataTest(p, run_closed_form); });
+  // This test's regressions (other layers keep theirs). A file with a
+  // "known_bug" key documents an open engine bug: registered DISABLED_ so CI
+  // stays green; run with --gtest_also_run_disabled_tests; drop the key once fixed.
+  for (const std::string& p : json_files("cases/regressions")) {
+    if (stem(p).rfind("solid_", 0) != 0) continue;
+    std::ifstream in(p);
+    const bool known_bug = nlohmann::json::parse(in).contains("known_bug");
+    const std::string name = (known_bug ? "DISABLED_" : "") + stem(p);
+    ::testing::RegisterTest("SolidDistanceRegression", name.c_str(), nullptr, nullptr, __FILE__, __LINE__,
+                            [p]() -> ::testing::Test* { return new DataTest(p, run_regression); });
+  }
+  return true;
+}();
+
+TEST(SolidDistanceClosedForm, AllFilesPresent) {
+  // The brief's list; a renamed file must not silently drop its test.
+  for (const char* f : {"curved_pieces", "two_spheres", "sphere_can", "coaxial_stacked", "stacked_coins", "parallel_cylinders",
+                        "linked_tori", "ball_in_cup", "nested", "overlapping", "touching"})
+    EXPECT_TRUE(fs::exists(source_path(std::string("cases/distance/") + f + ".json"))) << f;
+}
+
+// ---------------------------------------------------------------------------
+// 3. Brute force on the true surfaces: every bundled model case.
+
+TEST(SolidDistanceBruteForce, BundledModels) {
+  int queries = 0, not_converged = 0;
+  for (const std::string& path : json_files("cases/models")) {
+    Loaded L(path, kEps);
+    for (std::size_t q = 0; q < L.c.queries.size(); ++q) {
+      const auto [ia, ib] = L.c.queries[q];
+      const PosedSolid &A = L.m.instances[ia], &B = L.m.instances[ib];
+      const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
+      check_query(A, B, *L.samplers[ia], *L.samplers[ib], r, kTol, stem(path) + " " + L.key(q));
+      ++queries;
+      if (!r.converged) {
+        ++not_converged;
+        std::printf("[ note     ] %s %s not converged: %s\n", stem(path).c_str(), L.key(q).c_str(),
+                    describe(r).c_str());
+      }
+    }
+  }
+  std::printf("[ stats    ] bundled models: %d queries, %d not converged\n", queries, not_converged);
+  EXPECT_GT(queries, 30);
+}
+
+// Random poses of the paper's five models: a random rotation each, b placed
+// along a random direction at a random centre distance (some overlap).
+struct PaperModels {
+  Case c;
+  CaseModel m;
+  std::vector<std::unique_ptr<ProfileSampler>> samplers;
+  explicit PaperModels(double eps) : c(read_case(source_path("cases/models/paper_pairs.json"))), m(build_case_model(c, eps)) {
+    for (const PosedSolid& s : m.instances) samplers.push_back(std::make_unique<ProfileSampler>(*s.profile, 4000));
+  }
+};
+
+std::pair<PosedSolid, PosedSolid> random_pose_pair(const PosedSolid& a, const PosedSolid& b, std::mt19937_64& g,
+                                                   double max_centre) {
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> N(0, 1);
+  PosedSolid A = a, B = b;
+  A.R = rotation_of(random_quaternion(g));
+  B.R = rotation_of(random_quaternion(g));
+  A.t = Vec3(N(g), N(g), N(g)) * 0.1;
+  Vec3 dir(N(g), N(g), N(g));
+  B.t = A.t + dir.normalized() * max_centre * U(g);
+  return {A, B};
+}
+
+TEST(SolidDistanceBruteForce, RandomPosesOfPaperModels) {
+  std::mt19937_64 g(test_seed(7001, "RandomPosesOfPaperModels"));
+  PaperModels P(kEps);
+  const int n = 25;
+  int not_converged = 0, overlaps = 0;
+  for (int k = 0; k < n; ++k) {
+    const std::size_t ia = g() % P.m.instances.size(), ib = g() % P.m.instances.size();
+    const auto [A, B] = random_pose_pair(P.m.instances[ia], P.m.instances[ib], g, 2.5);
+    const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
+    check_query(A, B, *P.samplers[ia], *P.samplers[ib], r, kTol,
+                "trial " + std::to_string(k) + " " + P.c.instances[ia].name + "-" + P.c.instances[ib].name);
+    not_converged += !r.converged;
+    overlaps += r.overlap;
+  }
+  std::printf("[ stats    ] %d random poses: %d overlap, %d not converged\n", n, overlaps, not_converged);
+}
+
+// ---------------------------------------------------------------------------
+// 2. Pruned vs exhaustive: every leaf pair of the same trees, every arc pair,
+// patch_pair_distance, the minimum. The biarc surfaces are within the leaves'
+// eps of the true ones, so the traversal's bracket (on the true solids) must
+// reach the exhaustive biarc distance within eps_a + eps_b.
+
+struct Exhaustive {
+  double distance = INFINITY;  // min over separated patch pairs; 0 if some pair may cross
+  bool crossing = false;
+  double eps_a = 0, eps_b = 0;
+  long pairs = 0;
+};
+
+Exhaustive exhaustive_leaf_distance(const PosedSolid& A, const PosedSolid& B) {
+  Exhaustive e;
+  std::vector<const BiarcFit*> la, lb;
+  for (const BiarcNode& n : A.tree->nodes)
+    if (n.leaf() && n.fit >= 0) la.push_back(&A.tree->fits[n.fit]), e.eps_a = std::max(e.eps_a, A.tree->fits[n.fit].eps);
+  for (const BiarcNode& n : B.tree->nodes)
+    if (n.leaf() && n.fit >= 0) lb.push_back(&B.tree->fits[n.fit]), e.eps_b = std::max(e.eps_b, B.tree->fits[n.fit].eps);
+  for (const BiarcFit* fa : la)
+    for (int i = 0; i < fa->arcs; ++i) {
+      if (fa->arc[i].length <= 0) continue;
+      const Patch P = make_patch(fa->arc[i], A.R, A.t);
+      for (const BiarcFit* fb : lb)
+        for (int j = 0; j < fb->arcs; ++j) {
+          if (fb->arc[j].length <= 0) continue;
+          const Patch Q = make_patch(fb->arc[j], B.R, B.t);
+          const PatchPairResult r = patch_pair_distance(P, Q);
+          ++e.pairs;
+          if (!r.separated) e.crossing = true;
+          if (r.found) e.distance = std::min(e.distance, r.upper);
+        }
+    }
+  if (e.crossing) e.distance = 0.0;
+  return e;
+}
+
+TEST(SolidDistancePrunedVsExhaustive, SmallTrees) {
+  std::mt19937_64 g(test_seed(7002, "PrunedVsExhaustive"));
+  // Coarse eps keeps the trees small enough for the all-pairs loop.
+  for (const double eps : {1e-2, 1e-3}) {
+    PaperModels P(eps);
+    int compared = 0;
+    for (int k = 0; k < (eps > 5e-3 ? 12 : 4); ++k) {
+      const std::size_t ia = g() % P.m.instances.size(), ib = g() % P.m.instances.size();
+      auto [A, B] = random_pose_pair(P.m.instances[ia], P.m.instances[ib], g, 3.0);
+      // Far enough apart that neither contains the other (surface distance = solid distance).
+      const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
+      const Exhaustive e = exhaustive_leaf_distance(A, B);
+      const double round = 1e-12 * query_scale(A, B);
+      const double slack = e.eps_a + e.eps_b + round;
+      SCOPED_TRACE("eps=" + std::to_string(eps) + " trial " + std::to_string(k) + " " + describe(r) +
+                   " exhaustive=" + std::to_string(e.distance) + " pairs=" + std::to_string(e.pairs) + "\n A " +
+                   describe_pose(A) + "\n B " + describe_pose(B));
+      EXPECT_LE(r.lower, e.distance + slack);
+      if (!e.crossing && !r.overlap) { EXPECT_GE(r.upper, e.distance - slack); }
+      if (r.overlap) { EXPECT_TRUE(e.crossing || e.distance <= slack) << "overlap proven but the biarc surfaces are apart"; }
+      ++compared;
+    }
+    EXPECT_GT(compared, 0);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// 4. Metamorphic relations on every bundled query and every closed-form query.
+
+struct Query {
+  std::string what;
+  PosedSolid A, B;
+  const ProfileSampler* sa;
+  const ProfileSampler* sb;
+};
+
+// Both brackets contain the truth (SPEC 6), so they must intersect; converged,
+// each is within tol of the other.
+void expect_same_bracket(const SolidDistanceResult& r, const SolidDistanceResult& s, double tol, double round,
+                         const std::string& what) {
+  EXPECT_LE(std::max(r.lower, s.lower), std::min(r.upper, s.upper) + round)
+      << what << "\n first:  " << describe(r) << "\n second: " << describe(s);
+  if (r.converged && s.converged) {
+    EXPECT_LE(std::abs(r.lower - s.lower), tol + round) << what;
+    EXPECT_LE(std::abs(r.upper - s.upper), tol + round) << what;
+  }
+}
+
+class Metamorphic : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    files_ = new std::vector<std::unique_ptr<Loaded>>;
+    std::vector<std::string> paths = json_files("cases/models");
+    for (const std::string& p : json_files("cases/distance")) paths.push_back(p);
+    for (const std::string& p : paths) files_->push_back(std::make_unique<Loaded>(p, kEps));
+  }
+  static void TearDownTestSuite() { delete files_; }
+  template <class F>
+  void for_each_query(F f) {
+    for (const auto& L : *files_)
+      for (std::size_t q = 0; q < L->c.queries.size(); ++q) {
+        const auto [ia, ib] = L->c.queries[q];
+        f(Query{stem(L->c.file) + " " + L->key(q), L->m.instances[ia], L->m.instances[ib], L->samplers[ia].get(),
+                L->samplers[ib].get()});
+      }
+  }
+  static std::vector<std::unique_ptr<Loaded>>* files_;
+};
+std::vector<std::unique_ptr<Loaded>>* Metamorphic::files_ = nullptr;
+
+TEST_F(Metamorphic, SwapArguments) {
+  for_each_query([&](const Query& q) {
+    const SolidDistanceResult r = solid_distance(q.A, q.B, DistanceOptions{kTol});
+    const SolidDistanceResult s = solid_distance(q.B, q.A, DistanceOptions{kTol});
+    expect_same_bracket(r, s, kTol, 1e-12 * query_scale(q.A, q.B), q.what + " swapped");
+    EXPECT_EQ(r.overlap, s.overlap) << q.what;
+  });
+}
+
+TEST_F(Metamorphic, RigidMotionOfBoth) {
+  std::mt19937_64 g(test_seed(7003, "RigidMotionOfBoth"));
+  std::uniform_real_distribution<double> U(-1, 1);
+  for_each_query([&](const Query& q) {
+    const SolidDistanceResult r = solid_distance(q.A, q.B, DistanceOptions{kTol});
+    for (int k = 0; k < 3; ++k) {
+      // Random rotation, near-identity rotation (1e-9 rad), and a random one far away.
+      const std::array<double, 4> quat = k == 1 ? near_identity_quaternion(g, 1e-9) : random_quaternion(g);
+      const double reach = k == 2 ? 1e3 : 10.0;
+      const Mat3 M = rotation_of(quat);
+      const Vec3 m(reach * U(g), reach * U(g), reach * U(g));
+      const PosedSolid A = moved(q.A, M, m), B = moved(q.B, M, m);
+      const SolidDistanceResult s = solid_distance(A, B, DistanceOptions{kTol});
+      const double round = 1e-12 * query_scale(A, B);
+      char what[320];
+      std::snprintf(what, sizeof what, " motion %d: q=[%.17g %.17g %.17g %.17g] m=[%.17g %.17g %.17g]", k, quat[0],
+                    quat[1], quat[2], quat[3], m.x(), m.y(), m.z());
+      expect_same_bracket(r, s, kTol, round, q.what + what);
+      expect_certificates(A, B, s, *q.sa, *q.sb, 1e-9 * query_scale(A, B), q.what + what);
+    }
+  });
+}
+
+// A case with every solid's profile transformed and the poses adjusted.
+template <class F>
+Case transformed_case(const Case& c, F profile_map, double translation_scale) {
+  Case t = c;
+  for (SolidDef& s : t.solids)
+    for (Profile& p : s.keyframes) p = profile_map(p);
+  for (Instance& i : t.instances) i.pose.translation *= translation_scale;
+  return t;
+}
+
+TEST_F(Metamorphic, ScaleByPowersOfTwo) {
+  for (const int k : {-3, 4}) {
+    const double f = std::ldexp(1.0, k);
+    for (const auto& L : *files_) {
+      const Case c2 = transformed_case(L->c, [&](const Profile& p) { return scaled_profile(p, f); }, f);
+      // The trees at f * eps are the same fits scaled (the lens bound is scale-equivariant).
+      const CaseModel m2 = build_case_model(c2, kEps * f);
+      for (std::size_t q = 0; q < L->c.queries.size(); ++q) {
+        const auto [ia, ib] = L->c.queries[q];
+        const SolidDistanceResult r = solid_distance(L->m.instances[ia], L->m.instances[ib], DistanceOptions{kTol});
+        const SolidDistanceResult s = solid_distance(m2.instances[ia], m2.instances[ib], DistanceOptions{kTol * f});
+        SolidDistanceResult rs = r;
+        rs.lower *= f, rs.upper *= f, rs.distance *= f;
+        const double round = 1e-12 * query_scale(m2.instances[ia], m2.instances[ib]);
+        expect_same_bracket(rs, s, kTol * f, round, stem(L->c.file) + " " + L->key(q) + " scaled by 2^" + std::to_string(k));
+        EXPECT_EQ(r.overlap, s.overlap) << stem(L->c.file) << " " << L->key(q) << " 2^" << k;
+      }
+    }
+  }
+}
+
+TEST_F(Metamorphic, ReversedProfiles) {
+  for (const auto& L : *files_) {
+    const Case c2 = transformed_case(L->c, reversed_profile, 1.0);
+    const CaseModel m2 = build_case_model(c2, kEps);
+    for (std::size_t q = 0; q < L->c.queries.size(); ++q) {
+      const auto [ia, ib] = L->c.queries[q];
+      const SolidDistanceResult r = solid_distance(L->m.instances[ia], L->m.instances[ib], DistanceOptions{kTol});
+      const SolidDistanceResult s = solid_distance(m2.instances[ia], m2.instances[ib], DistanceOptions{kTol});
+      const double round = 1e-12 * query_scale(m2.instances[ia], m2.instances[ib]);
+      expect_same_bracket(r, s, kTol, round, stem(L->c.file) + " " + L->key(q) + " reversed");
+      EXPECT_EQ(r.overlap, s.overlap) << stem(L->c.file) << " " << L->key(q) << " reversed";
+    }
+  }
+}
+
+// The reversal helper itself: the reversed curve is the same point set.
+TEST(SolidTestUtil, ReversedProfileTracesTheSameCurve) {
+  const Case c = read_case(source_path("cases/models/paper_pairs.json"));
+  for (const SolidDef& s : c.solids) {
+    const Profile& p = s.keyframes[0];
+    const Profile r = reversed_profile(p);
+    ASSERT_EQ(p.pieces.size(), r.pieces.size());
+    for (std::size_t k = 0; k < p.pieces.size(); ++k) {
+      const Piece &a = p.pieces[k], &b = r.pieces[p.pieces.size() - 1 - k];
+      const auto [u0, u1] = piece_domain(a);
+      const auto [v0, v1] = piece_domain(b);
+      for (int i = 0; i <= 50; ++i) {
+        const Vec2 x = piece_point(a, u0 + (u1 - u0) * i / 50), y = piece_point(b, v1 - (v1 - v0) * i / 50);
+        EXPECT_LE((x - y).norm(), 1e-13) << s.name << " piece " << k << " i=" << i;
+      }
+    }
+  }
+}
+
+// The brute force itself, on a closed form it must reach: two unit balls.
+TEST(SolidTestUtil, BruteForceReachesTheClosedForm) {
+  const Case c = read_case(source_path("cases/distance/two_spheres.json"));
+  const CaseModel m = build_case_model(c, kEps);
+  const BruteResult b = brute_surface_distance(m.instances[0], m.instances[1]);
+  EXPECT_GE(b.distance, 1.5 - 1e-12);
+  EXPECT_LE(b.distance, 1.5 + 1e-9);
+  EXPECT_NEAR((b.x_W - b.y_W).norm(), b.distance, 1e-12);
+}
+
+}  // namespace
+}  // namespace revdist
