@@ -23,6 +23,7 @@ struct Builder {
   const Profile& profile;
   double eps;
   double slack;  // rounding allowance added to every proven bound
+  double max_exact_length;  // exact lines and arcs are split below this length
   BiarcTree& tree;
   BuildStats st;
 
@@ -55,9 +56,36 @@ struct Builder {
     st.max_depth = std::max(st.max_depth, static_cast<int>(f.depth));
   }
 
-  // An input line or a (<= 90 degree) part of an input arc: one exact Arc2.
+  // An input line or a (<= 90 degree) part of an input arc: exact Arc2s, split
+  // in halves until no longer than max_exact_length. Their error is only
+  // rounding either way; the split keeps their bounding disks small, which is
+  // what the distance traversal's lower bounds are made of (a long segment's
+  // disk is loose by half its length).
   void build_exact(std::int32_t node, const SpiralSpan& s) {
     const Piece& piece = profile.pieces[s.piece];
+    double length;
+    if (s.kind == SpanKind::line) {
+      length = (s.ends.p1 - s.ends.p0).norm();
+    } else {
+      const ArcGeometry g = arc_geometry(piece);
+      length = g.radius * std::abs(g.sweep) * (s.u1 - s.u0);
+    }
+    const double um = 0.5 * (s.u0 + s.u1);
+    if (length > max_exact_length && s.u0 < um && um < s.u1) {
+      SpiralSpan left = s, right = s;
+      left.u1 = um;
+      left.ends.p1 = piece_tangent(piece, um, -1, &left.ends.t1, &left.ends.k1);
+      right.u0 = um;
+      right.ends.p0 = left.ends.p1;
+      right.ends.t0 = left.ends.t1;
+      right.ends.k0 = left.ends.k1;
+      const std::int32_t c = alloc_pair();
+      tree.nodes[node].child = c;
+      build_exact(c, left);
+      build_exact(c + 1, right);
+      set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
+      return;
+    }
     BiarcFit f;
     f.piece = s.piece;
     f.kind = s.kind;
@@ -67,13 +95,8 @@ struct Builder {
     Arc2& a = f.arc[0];
     a.start = s.ends.p0;
     a.tangent = s.ends.t0;
-    if (s.kind == SpanKind::line) {
-      a.length = (s.ends.p1 - s.ends.p0).norm();
-    } else {
-      const ArcGeometry g = arc_geometry(piece);
-      a.curvature = s.ends.k0;
-      a.length = g.radius * std::abs(g.sweep) * (s.u1 - s.u0);
-    }
+    a.curvature = s.kind == SpanKind::line ? 0.0 : s.ends.k0;
+    a.length = length;
     f.arc[1] = Arc2{a.end(), a.end_tangent(), a.curvature, 0.0};
     f.eps = slack;
     Capsule c = lens_capsule(s.ends, lens_bound(s.ends));
@@ -179,7 +202,15 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
   for (const Piece& p : profile.pieces) {
     for (const Vec2& q : p.points) scale = std::max({scale, std::abs(q.x()), std::abs(q.y())});
   }
-  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, tree, BuildStats{}};
+  // Exact pieces: at most 1/16 of the profile's extent per leaf.
+  double lo_r = DBL_MAX, hi_r = -DBL_MAX, lo_z = DBL_MAX, hi_z = -DBL_MAX;
+  for (const Piece& p : profile.pieces)
+    for (const Vec2& q : p.points) {
+      lo_r = std::min(lo_r, q.x()); hi_r = std::max(hi_r, q.x());
+      lo_z = std::min(lo_z, q.y()); hi_z = std::max(hi_z, q.y());
+    }
+  const double extent = profile.pieces.empty() ? 0.0 : std::hypot(hi_r - lo_r, hi_z - lo_z);
+  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent / 16, tree, BuildStats{}};
   if (!tree.spirals.empty()) {
     tree.nodes.resize(1);
     b.build_upper(0, 0, tree.spirals.size());

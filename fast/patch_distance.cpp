@@ -29,18 +29,29 @@ struct Collector {
   const Patch& A;
   const Patch& B;
   double tol;
+  double cutoff;       // sub-problems proven at least this far apart are skipped
+  bool need_g;         // the sign tests are needed (the bounding tori meet)
   PatchPairResult res;
+  // True when a sub-problem's lower bound reaches the cutoff: it is skipped and
+  // its bound kept in res.lower_skipped.
+  bool skip(double lb) {
+    if (need_g || !(lb >= cutoff)) return false;
+    res.lower_skipped = std::min(res.lower_skipped, lb);
+    return true;
+  }
   double gb_min = kInf, gb_max = -kInf;  // g_B over points of A
   double ga_min = kInf, ga_max = -kInf;  // g_A over points of B
 
   bool on_a(const Vec3& x) const { return patch_contains_local(A, patch_local(A, x), tol); }
   bool on_b(const Vec3& y) const { return patch_contains_local(B, patch_local(B, y), tol); }
   void point_a(const Vec3& x) {
+    if (!need_g) return;
     const double g = patch_surface_function(B, patch_local(B, x));
     if (g < gb_min) { gb_min = g; res.a_low = x; }
     if (g > gb_max) { gb_max = g; res.a_high = x; }
   }
   void point_b(const Vec3& y) {
+    if (!need_g) return;
     const double g = patch_surface_function(A, patch_local(A, y));
     if (g < ga_min) { ga_min = g; res.b_low = y; }
     if (g > ga_max) { ga_max = g; res.b_high = y; }
@@ -126,6 +137,16 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
   };
   auto add_e = [&](const Vec3& e) { if (e_on_a) c.point_a(e); else c.point_b(e); };
   auto on_o = [&](const Vec3& p) { return e_on_a ? c.on_b(p) : c.on_a(p); };
+  // Lower bound: E against the solid torus that holds O (its disk's, or for a
+  // toroidal patch its own tube around the major circle).
+  {
+    Vec2 dc;
+    double dr;
+    patch_disk(O, &dc, &dr);
+    double lb = circle3_circle3_distance(E, patch_disk_circle(O, dc)).distance - dr;
+    if (!O.straight) lb = std::max(lb, circle3_circle3_distance(E, patch_major_circle(O)).distance - O.rho);
+    if (c.skip(lb)) return;
+  }
   if (O.straight) {
     Vec3 pts[16];
     bool deg = false;
@@ -153,10 +174,12 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
   }
 }
 
-void interior_vs_interior(Collector& c) {
+void interior_vs_interior(Collector& c, double disk_lb) {
   const Patch& A = c.A;
   const Patch& B = c.B;
   if (!A.straight && !B.straight) {
+    const double lb = circle3_circle3_distance(patch_major_circle(A), patch_major_circle(B)).distance - A.rho - B.rho;
+    if (c.skip(std::max(lb, disk_lb))) return;
     const auto lines = binormal_lines(patch_major_circle(A), patch_major_circle(B));
     for (const auto& l : lines) {
       const Vec3 d = l.point_b - l.point_a;
@@ -182,6 +205,7 @@ void interior_vs_interior(Collector& c) {
     }
     return;
   }
+  if (c.skip(disk_lb)) return;
   if (A.straight && B.straight) {
     Vec3 xs[16], ys[16];
     bool deg = false;
@@ -262,13 +286,70 @@ double patch_disk_bound(const Patch& A, const Patch& B) {
   return circle3_circle3_distance(patch_disk_circle(A, ca), patch_disk_circle(B, cb)).distance - ra - rb;
 }
 
-PatchPairResult patch_pair_distance(const Patch& A, const Patch& B) {
+// Lower bound from the plane of flat annulus F (a straight patch with n_r = 0):
+// when patch O lies on one side of that plane, its distance to the plane.
+// Heights are linear, so over a circle they range over h(centre) +- r |a_F x n|
+// (n the circle's axis); over a cone patch they peak on its end circles (linear
+// along each generator); over a torus patch they stay within rho of those of
+// its major circle. Exact for parallel flat annuli (stacked coins).
+double plane_bound(const Patch& F, const Patch& O) {
+  const Vec3 axis_perp = F.a - F.a.dot(O.a) * O.a;
+  const double slope = axis_perp.norm();
+  auto height = [&](const Vec3& x) { return (x - F.o).dot(F.a) - F.p0.y(); };
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  auto circle_range = [&](const Circle3& c, double pad) {
+    const double h = height(c.center);
+    lo = std::min(lo, h - c.radius * slope - pad);
+    hi = std::max(hi, h + c.radius * slope + pad);
+  };
+  if (O.straight) {
+    circle_range(patch_end_circle(O, 0), 0.0);
+    circle_range(patch_end_circle(O, 1), 0.0);
+  } else {
+    circle_range(patch_major_circle(O), O.rho);
+  }
+  if (lo > 0) return lo;
+  if (hi < 0) return -hi;
+  return -std::numeric_limits<double>::infinity();
+}
+
+PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
+  PatchQuick q;
+  q.lower = patch_disk_bound(A, B);
+  if (A.straight && A.n.x() == 0) q.lower = std::max(q.lower, plane_bound(A, B));
+  if (B.straight && B.n.x() == 0) q.lower = std::max(q.lower, plane_bound(B, A));
+  if (A.straight || B.straight) return q;
+  const Circle3Circle3Result m = circle3_circle3_distance(patch_major_circle(A), patch_major_circle(B));
+  const double gap = m.distance - A.rho - B.rho;
+  q.lower = std::max(q.lower, gap);
+  if (!(gap > 0)) return q;
+  const Vec3 w = (m.point_b - m.point_a) / m.distance;
+  const Vec3 x = m.point_a + A.rho * w, y = m.point_b - B.rho * w;
+  Vec3 ca, cb;
+  const double scale = std::max({patch_extent(A, &ca), patch_extent(B, &cb), m.distance});
+  const double tol = 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() *
+                                        std::max(ca.cwiseAbs().maxCoeff(), cb.cwiseAbs().maxCoeff());
+  if (patch_contains_local(A, patch_local(A, x), tol) && patch_contains_local(B, patch_local(B, y), tol)) {
+    q.exact = true;
+    q.x = x;
+    q.y = y;
+  }
+  return q;
+}
+
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff) {
   Vec3 ca, cb;
   const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
   const double scale = std::max({ea, eb, (ca - cb).norm(), 1e-300});
   // Points built on the patches are on them to a few ulps of the coordinates.
   const double coord = std::max({ca.cwiseAbs().maxCoeff(), cb.cwiseAbs().maxCoeff(), scale});
-  Collector c{A, B, 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() * coord, {}};
+  // Rounding of the surface functions: a few ulps of the coordinates.
+  const double gtol = 1024 * std::numeric_limits<double>::epsilon() * coord;
+  // Disjoint bounding tori separate the patches: no sign tests, and
+  // sub-problems that cannot beat the cutoff are skipped.
+  const double disk_lb = patch_disk_bound(A, B);
+  const bool need_g = !(disk_lb > gtol);
+  Collector c{A, B, 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() * coord, cutoff, need_g, {}};
 
   const Circle3 ea_c[2] = {patch_end_circle(A, 0), patch_end_circle(A, 1)};
   const Circle3 eb_c[2] = {patch_end_circle(B, 0), patch_end_circle(B, 1)};
@@ -281,14 +362,13 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B) {
     }
   for (const auto& e : ea_c) boundary_vs_interior(c, e, true);
   for (const auto& f : eb_c) boundary_vs_interior(c, f, false);
-  interior_vs_interior(c);
-  nonsmooth_points(c, true);
-  nonsmooth_points(c, false);
-
-  // Rounding of the surface functions: a few ulps of the coordinates.
-  const double gtol = 1024 * std::numeric_limits<double>::epsilon() * coord;
-  c.res.separated = !c.res.degenerate && (c.gb_min > gtol || c.gb_max < -gtol || c.ga_min > gtol ||
-                                          c.ga_max < -gtol || patch_disk_bound(A, B) > gtol);
+  interior_vs_interior(c, disk_lb);
+  if (need_g) {
+    nonsmooth_points(c, true);
+    nonsmooth_points(c, false);
+  }
+  c.res.separated = !c.res.degenerate && (!need_g || c.gb_min > gtol || c.gb_max < -gtol ||
+                                          c.ga_min > gtol || c.ga_max < -gtol);
   return c.res;
 }
 

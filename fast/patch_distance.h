@@ -17,6 +17,8 @@
 // cross far from the other patch; the patches' bounding tori (patch_disk) being
 // disjoint separates them too.
 #pragma once
+#include <limits>
+
 #include "fast/patch.h"
 
 namespace revdist {
@@ -36,11 +38,32 @@ struct PatchPairResult {
   // patches cross (probes for an overlap proof).
   Vec3 a_low = Vec3::Zero(), a_high = Vec3::Zero();  // on A, extremes of B's function
   Vec3 b_low = Vec3::Zero(), b_high = Vec3::Zero();  // on B, extremes of A's function
+  // Lower bound of the sub-problems skipped because they could not come below
+  // the cutoff (+inf when none was): when separated, the patch distance is
+  // min(upper, lower_skipped) or more.
+  double lower_skipped = std::numeric_limits<double>::infinity();
 };
 
-PatchPairResult patch_pair_distance(const Patch& A, const Patch& B);
+// cutoff: when the patches' bounding tori are disjoint, parts of the
+// enumeration proven (by circle distances) to stay at or above cutoff are
+// skipped; pass the caller's current upper bound. +inf: everything.
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
+                                    double cutoff = std::numeric_limits<double>::infinity());
 
 // Lower bound on the distance between two patches from their bounding tori.
 double patch_disk_bound(const Patch& A, const Patch& B);
+
+// The cheap first look at a patch pair, enough for most pairs of a query:
+// a lower bound (the bounding tori's, and for two toroidal patches also
+// dist(major circles) - rho_a - rho_b, since every point of a torus is within
+// rho of its major circle) and, when the major circles' closest pair lands
+// inside both patches' ranges with the tubes apart, the exact distance (that
+// pair's points on the patches attain the bound).
+struct PatchQuick {
+  double lower = 0.0;
+  bool exact = false;  // then lower is the distance, attained by (x, y)
+  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
+};
+PatchQuick patch_pair_quick(const Patch& A, const Patch& B);
 
 }  // namespace revdist

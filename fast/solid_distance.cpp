@@ -306,17 +306,28 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       for (int j = 0; j < fb.arcs; ++j) {
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
-        // The patches' bounding tori first: most pairs end here.
-        const double disk = patch_disk_bound(P, Q) - fa.eps - fb.eps - round;
+        // The cheap look first: most pairs end here.
+        const PatchQuick quick = patch_pair_quick(P, Q);
+        const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= ub - opt.tol) {
+          ++st.quick_pairs;
+          lb_pair = std::min(lb_pair, disk);
+          continue;
+        }
+        if (quick.exact) {
+          ++st.quick_pairs;
+          offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
           lb_pair = std::min(lb_pair, disk);
           continue;
         }
         ++st.patch_pairs;
-        const PatchPairResult r = patch_pair_distance(P, Q);
+        // Parts that cannot beat the current bracket are skipped (their
+        // bounds are kept in lower_skipped).
+        const PatchPairResult r = patch_pair_distance(P, Q, ub - opt.tol + fa.eps + fb.eps + round);
         if (r.found) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
-          lb_pair = std::min(lb_pair, std::max(disk, r.upper - fa.eps - fb.eps - round));
+          const double d = std::min(r.found ? r.upper : kInf, r.lower_skipped);
+          lb_pair = std::min(lb_pair, std::max(disk, d - fa.eps - fb.eps - round));
           continue;
         }
         all_separated = false;

@@ -31,7 +31,8 @@ struct DistanceOptions {
 struct DistanceStats {
   long node_pairs = 0;   // pairs popped from the queue
   long leaf_pairs = 0;   // pairs of fits whose patches were compared
-  long patch_pairs = 0;  // patch-patch distance evaluations
+  long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h)
+  long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
   long refined = 0;      // parts created by refining fits below the tree leaves
 };
 

@@ -128,6 +128,15 @@ TEST(BiarcTree, RandomBsplinesProvenBoundCoversSampledHausdorff) {
   }
 }
 
+// Exact lines and arcs are halved until no leaf is longer than 1/16 of the
+// profile's extent (the diagonal of its control points' box): a span of length
+// L gives the smallest power of two n with L / n <= extent / 16 leaves.
+int exact_leaves(double length, double extent) {
+  int n = 1;
+  while (length / n > extent / 16) n *= 2;
+  return n;
+}
+
 TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
   Profile can;  // a can with a domed lid: lines, and a sphere-cap arc centred on the axis
   can.pieces.push_back(line_piece({0, 0}, {1, 0}));
@@ -138,7 +147,8 @@ TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
   BuildStats st;
   const BiarcTree tree = build_biarc_tree(can, 1e-6, &st);
   EXPECT_EQ(st.spirals, 3);
-  EXPECT_EQ(st.leaves, 3);
+  const double extent = std::hypot(1.0, 3.0);  // control points span r in [0, 1], z in [0, 3]
+  EXPECT_EQ(st.leaves, exact_leaves(1, extent) + exact_leaves(2, extent) + exact_leaves(M_PI / 2, extent));
   EXPECT_LT(st.max_error, 1e-13);
   for (const BiarcFit& f : tree.fits) {
     EXPECT_EQ(f.arcs, 1);
@@ -160,7 +170,10 @@ TEST(BiarcTree, SpindleArcSplitAtExtremes) {
   BuildStats st;
   const BiarcTree tree = build_biarc_tree(spindle, 1e-4, &st);
   EXPECT_EQ(st.spirals, 2);
-  EXPECT_EQ(st.leaves, 2);
+  // Each half of the spindle arc (radius sqrt 2, quarter turn each) against the
+  // control points' box r in [0, sqrt 2 - 1], z in [0, 2].
+  const double extent = std::hypot(r - 1, 2.0);
+  EXPECT_EQ(st.leaves, 2 * exact_leaves(r * M_PI / 4, extent));
   check_tree(spindle, tree, 1e-4);
 }
 
@@ -205,7 +218,7 @@ TEST(BiarcTree, EmptyAndDegenerateProfiles) {
   point.pieces.push_back(line_piece({1, 1}, {0, 1}));
   const BiarcTree t2 = build_biarc_tree(point, 1e-3, &st);
   EXPECT_EQ(st.spirals, 1);
-  EXPECT_EQ(st.leaves, 1);
+  EXPECT_EQ(st.leaves, exact_leaves(1.0, 1.0));  // the unit line against the box [0, 1] x [1, 1]
 }
 
 }  // namespace
