@@ -150,7 +150,8 @@ void run_regression(const std::string& path) {
     const auto [ia, ib] = L.c.queries[q];
     const PosedSolid &A = L.m.instances[ia], &B = L.m.instances[ib];
     const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol});
-    check_query(A, B, *L.samplers[ia], *L.samplers[ib], r, kTol, stem(path) + " " + L.key(q));
+    const double brute = check_query(A, B, *L.samplers[ia], *L.samplers[ib], r, kTol, stem(path) + " " + L.key(q));
+    std::printf("[ query    ] %s %s: %s brute %.17g\n", stem(path).c_str(), L.key(q).c_str(), describe(r).c_str(), brute);
     const auto e = ex.distance.find(L.key(q));
     if (e != ex.distance.end()) {
       const double round = 1e-12 * query_scale(A, B);
@@ -316,6 +317,9 @@ TEST(SolidDistancePrunedVsExhaustive, SmallTrees) {
       SCOPED_TRACE("eps=" + std::to_string(eps) + " trial " + std::to_string(k) + " " + describe(r) +
                    " exhaustive=" + std::to_string(e.distance) + " pairs=" + std::to_string(e.pairs) + "\n A " +
                    describe_pose(A) + "\n B " + describe_pose(B));
+      std::printf("[ pair     ] eps=%g %s-%s: lower %.12g upper %.12g exhaustive %.12g (%ld patch pairs, crossing %d)\n",
+                  eps, P.c.instances[ia].name.c_str(), P.c.instances[ib].name.c_str(), r.lower, r.upper, e.distance,
+                  e.pairs, e.crossing);
       EXPECT_LE(r.lower, e.distance + slack);
       if (!e.crossing && !r.overlap) { EXPECT_GE(r.upper, e.distance - slack); }
       if (r.overlap) { EXPECT_TRUE(e.crossing || e.distance <= slack) << "overlap proven but the biarc surfaces are apart"; }
