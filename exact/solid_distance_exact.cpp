@@ -1,0 +1,527 @@
+// Certified solid-solid distance (exact/solid_distance_exact.h; SPEC sections 2
+// and 6). An oracle for paper section 4.2 that shares nothing with fast/: no
+// biarcs, no circle binormals, only the input curves enclosed with MPFI.
+//
+// Reduction. For a point y in solid E's frame, its distance to E's surface is the
+// plane distance from (rho, zeta) = (|(y1, y2)|, y3) to E's profile in the meridian
+// half-plane (rotate the profile to y's azimuth). So the surface-surface distance
+// is the minimum over pairs (element e_S of one profile, element e_E of the other)
+// of  dist((rho, zeta)(X_S(u, psi)), e_E),  X_S(u, psi) the point of e_S's curve at
+// u rotated by psi = 2 pi s about S's axis, seen in E's frame. The roles are chosen
+// per pair: a line or arc element is the target whenever one of the two is, so the
+// distance to it has a closed form and the box is 2-D (u, s); two free-form
+// curves give a 3-D box (u, s, v) on g = (rho - r_E(v))^2 + (zeta - z_E(v))^2.
+//   line a-b (e = b - a):  dist^2 = cross(e, P - a)^2 / |e|^2 + |e|^2 exc(t)^2,
+//                          t = e.(P - a) / |e|^2, exc(t) = max(0, -t, t - 1);
+//   arc (c, R, q0 -> q1, less than a half turn): dist >= | |P - c| - R |, with
+//                          equality inside the (convex) sector; outside it
+//                          dist = min(|P - q0|, |P - q1|).
+// Bounds over a box. Every quantity Q above (cross, t, |P - c|, |P - q|^2, g) is
+// enclosed by the mean-value form Q(centre) + sum_i G_i [-h_i, h_i], with G_i an
+// interval enclosure of dQ/dx_i over the box (chain rule through rho and zeta),
+// intersected with the natural enclosure. rho = |v| is only Lipschitz at the axis:
+// where the box may reach the axis, d rho/dx_i is enclosed by [-|v_i|, |v_i|],
+// which contains every derivative of rho along any segment of the box (Lebourg's
+// mean value theorem; rho is absolutely continuous along segments). The same holds
+// for |P - c| near the arc's centre. So each box gets a PROVEN lower bound of the
+// squared distance over its points, with error O(h^2) (quadratic convergence near
+// a non-degenerate minimum; exact along flat continua such as parallel faces,
+// where the quantity is affine and its derivative is 0).
+// Upper bounds come only from genuine pairs: the box centre is a point of S's true
+// surface (enclosed), and the target's value there is an upper bound of its
+// distance to a genuine point of E's surface (an end point, the radial foot inside
+// the sector, or C(v) at the same azimuth).
+// Branch and bound: best-first on the lower bound, halving the dimension with the
+// largest term of the mean-value form; boxes whose lower bound exceeds the best
+// upper bound are dropped (they cannot hold the minimum). It stops when
+// sqrt(UB) - sqrt(min lower) <= relative_width * scale or at the box budget; the
+// interval [sqrt(min(min lower, UB)), sqrt(UB)] then contains the surface distance.
+// Coaxial solids (decided exactly in rationals): every quantity is independent of
+// psi, so s is fixed at 0 (a 1-D or 2-D problem in the common meridian plane).
+//
+// Solids, not surfaces (SPEC section 2). Both boundaries are connected closed
+// surfaces and the complement of each solid is connected, so if the surfaces are
+// disjoint (proven lower bound > 0), either one solid contains the other or they
+// are disjoint, and one boundary point of each decides which: a point of A's
+// surface strictly inside B (certified ray-crossing parity against B's exact
+// curves, exact/solid_exact_geometry.cpp) means containment, distance 0. Before
+// the branch and bound, sample points of each surface are tested the same way:
+// one strictly inside the other solid proves a shared point (overlap = true).
+// When the surfaces touch or cross, the lower bound stays 0 and [0, UB] is still
+// proven; overlap is then reported only if some point near the closest pair is
+// proven strictly inside the other solid.
+#include "exact/solid_distance_exact.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <vector>
+
+#include "exact/solid_exact_internal.h"
+
+namespace revdist {
+
+namespace {
+
+using namespace solid_exact_detail;
+using fit_audit_detail::pi;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Ia iv(double lo, double hi) {
+  Ia r;
+  mpfi_interv_d(r.p(), lo, hi);
+  return r;
+}
+Ia sym(double h) { return iv(-h, h); }
+
+// a intersected with b (both enclose the same range, so the meet is not empty;
+// if rounding ever made it so, a alone is kept).
+Ia meet(const Ia& a, const Ia& b) {
+  Ia r;
+  mpfi_intersect(r.p(), a.p(), b.p());
+  if (mpfi_is_empty(r.p())) return a;
+  return r;
+}
+
+// A lower bound of |x| over the interval, rounded down.
+double mig(const Ia& x) {
+  if (x.pos()) return x.lo();
+  if (x.neg()) return -x.hi();
+  return 0.0;
+}
+double sq_lo(double m) { return (Ia(m) * Ia(m)).lo(); }
+
+// One pair of elements with its roles: the surface of element s_elem of solid
+// s_side (0 = a, 1 = b) measured against element e_elem of the other solid.
+struct Job {
+  int s_side = 0;
+  int s_elem = 0, e_elem = 0;
+  bool three_d = false;
+};
+
+struct Box {
+  double lower = 0.0;  // proven lower bound of the squared distance over the box, rounded down
+  int job = 0;
+  int split = -1;      // the dimension to halve next
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  bool operator>(const Box& o) const { return lower > o.lower; }
+};
+
+struct Eval {
+  double lower = 0.0, upper = kInf;  // squared distance: over the box (down), at the centre (up)
+  int split = -1;                     // dimension to halve, -1 when none can be
+};
+
+class Solver {
+ public:
+  Solver(const std::vector<Element>* elems, const Pose* poses, bool coaxial)
+      : elems_(elems), poses_(poses), coaxial_(coaxial) {
+    frames_[0] = relative_frame(poses[0], poses[1]);
+    frames_[1] = relative_frame(poses[1], poses[0]);
+  }
+
+  std::vector<Job> jobs;
+
+  void make_jobs() {
+    for (std::size_t i = 0; i < elems_[0].size(); ++i)
+      for (std::size_t j = 0; j < elems_[1].size(); ++j) {
+        Job job;
+        const bool a_curve = elems_[0][i].kind == ElemKind::curve;
+        const bool b_curve = elems_[1][j].kind == ElemKind::curve;
+        if (!b_curve || a_curve) {
+          job = {0, static_cast<int>(i), static_cast<int>(j), b_curve};
+        } else {
+          job = {1, static_cast<int>(j), static_cast<int>(i), false};
+        }
+        jobs.push_back(job);
+      }
+  }
+
+  // Meridian coordinates, in the other solid's frame, of S's surface at (u, s).
+  void meridian(const Job& job, const Ia& u, double s, Ia& rho, Ia& zeta, Ia y[3]) const {
+    surface_point(elems_[job.s_side][job.s_elem], frames_[job.s_side], u, s, y);
+    rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1]));
+    zeta = y[2];
+  }
+
+  Eval evaluate(const Box& b) const {
+    const Job& job = jobs[b.job];
+    const Element& S = elems_[job.s_side][job.s_elem];
+    const Element& E = elems_[1 - job.s_side][job.e_elem];
+    const Frame& f = frames_[job.s_side];
+    double c[3], h[3];
+    for (int i = 0; i < 3; ++i) {
+      c[i] = 0.5 * (b.lo[i] + b.hi[i]);
+      h[i] = std::max(c[i] - b.lo[i], b.hi[i] - c[i]);  // the centre is rounded; h covers both sides
+    }
+    // Over the box: S's point, its derivatives in u and s, seen in E's frame.
+    const Ia U = iv(b.lo[0], b.hi[0]);
+    Ia r, z, dr, dz;
+    elem_point_deriv(S, U, r, z, dr, dz);
+    Ia cs, sn, dpsi;
+    rotation_cs(b.lo[1], b.hi[1], cs, sn, &dpsi);
+    Ia y[3], yu[3], ys[3];
+    for (int k = 0; k < 3; ++k) {
+      const Ia ec = cs * f.M[k][0] + sn * f.M[k][1];
+      const Ia es = cs * f.M[k][1] - sn * f.M[k][0];
+      y[k] = f.o[k] + r * ec + z * f.M[k][2];
+      yu[k] = dr * ec + dz * f.M[k][2];
+      ys[k] = dpsi * r * es;
+    }
+    const Ia rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1])), zeta = y[2];
+    Ia drho[2], dzeta[2] = {yu[2], ys[2]};
+    const Ia* yd[2] = {yu, ys};
+    for (int i = 0; i < 2; ++i) {
+      if (rho.pos()) {
+        drho[i] = (y[0] * yd[i][0] + y[1] * yd[i][1]) / rho;
+      } else {
+        const double L = fit_audit_detail::sqrt_nonneg(sqr(yd[i][0]) + sqr(yd[i][1])).hi();
+        drho[i] = iv(-L, L);
+      }
+    }
+    // At the centre.
+    Ia rho_c, zeta_c, yc[3];
+    meridian(job, Ia(c[0]), c[1], rho_c, zeta_c, yc);
+    const Ia H[3] = {sym(h[0]), sym(h[1]), sym(h[2])};
+
+    Eval ev;
+    // Per dimension, how much the box's extent there lowers the bound of the squared
+    // distance below its centre value: the dimension to halve is the one that costs most.
+    double cost[3] = {0.0, 0.0, 0.0};
+    // A term T (in distance units) of a quantity Q whose square enters the squared
+    // distance lowers it by about 2 |Q(centre)| T + T^2; a term of a squared quantity by T.
+    auto add_cost = [&](int i, double T, double q_mag) { cost[i] += q_mag < 0 ? T : T * (2.0 * q_mag + T); };
+    // The mean-value form of Q given its derivatives with respect to rho and zeta.
+    // `weight` converts Q's units to distance; q_mag = |Q(centre)| in distance units,
+    // or < 0 when Q is itself a squared distance.
+    auto centred = [&](const Ia& q_c, const Ia& q_rho, const Ia& q_zeta, double weight, double q_mag) {
+      Ia out = q_c;
+      for (int i = 0; i < 2; ++i) {
+        const Ia g = q_rho * drho[i] + q_zeta * dzeta[i];
+        out = out + g * H[i];
+        add_cost(i, weight * abs(g).hi() * h[i], q_mag);
+      }
+      return out;
+    };
+    auto pick_split = [&]() {
+      double best = -1.0;
+      for (int i = 0; i < 3; ++i) {
+        if (!(b.lo[i] < c[i] && c[i] < b.hi[i])) continue;  // cannot be halved (or frozen)
+        if (cost[i] > best) {
+          best = cost[i];
+          ev.split = i;
+        }
+      }
+    };
+
+    if (E.kind == ElemKind::line) {
+      const P2 e = E.b - E.a;
+      const Ia e2 = fit_audit_detail::dot(e, e);
+      const Ia cr_c = e.x * (zeta_c - E.a.y) - e.y * (rho_c - E.a.x);
+      const double elen = fit_audit_detail::sqrt_nonneg(e2).lo();
+      const Ia cr = meet(centred(cr_c, -e.y, e.x, 1.0 / elen, abs(cr_c).hi() / elen),
+                         e.x * (zeta - E.a.y) - e.y * (rho - E.a.x));
+      const Ia t_c = ((rho_c - E.a.x) * e.x + (zeta_c - E.a.y) * e.y) / e2;
+      const Ia t_nat = ((rho - E.a.x) * e.x + (zeta - E.a.y) * e.y) / e2;
+      // The tangential part lowers the bound only where the centre's foot is off the segment.
+      const double exc_c = std::max({0.0, -t_c.lo(), (t_c - Ia(1.0)).hi()});
+      const Ia t = meet(centred(t_c, e.x / e2, e.y / e2, exc_c > 0 ? elen : 0.0, exc_c * elen), t_nat);
+      const double exc_lo = std::max({0.0, -t.hi(), (t - Ia(1.0)).lo()});
+      const double exc_hi = std::max({0.0, -t_c.lo(), (t_c - Ia(1.0)).hi()});
+      ev.lower = (Ia(sq_lo(mig(cr))) / e2 + e2 * Ia(sq_lo(exc_lo))).lo();
+      ev.upper = (sqr(cr_c) / e2 + e2 * sqr(Ia(exc_hi))).hi();
+      pick_split();
+    } else if (E.kind == ElemKind::arc) {
+      const Ia pr = rho - E.c.x, pz = zeta - E.c.y;
+      const Ia pr_c = rho_c - E.c.x, pz_c = zeta_c - E.c.y;
+      const Ia q_nat = fit_audit_detail::sqrt_nonneg(sqr(pr) + sqr(pz));
+      const Ia q_c = fit_audit_detail::sqrt_nonneg(sqr(pr_c) + sqr(pz_c));
+      Ia q;
+      if (q_nat.pos()) {
+        q = meet(centred(q_c, pr / q_nat, pz / q_nat, 1.0, abs(q_c - E.R).hi()), q_nat);
+      } else {  // the box may reach the centre: |P - c| is 1-Lipschitz in P
+        q = q_nat;
+        for (int i = 0; i < 2; ++i)
+          add_cost(i, fit_audit_detail::sqrt_nonneg(sqr(drho[i]) + sqr(dzeta[i])).hi() * h[i], abs(q_c - E.R).hi());
+      }
+      const double radial_lo = sq_lo(mig(q - E.R));
+      // The closed sector: cross(q0 - c, P - c) >= 0 and cross(P - c, q1 - c) >= 0.
+      const P2 a0 = E.a - E.c, b0 = E.b - E.c;
+      const Ia w0 = a0.x * pz - a0.y * pr, w1 = pr * b0.y - pz * b0.x;
+      const Ia w0_c = a0.x * pz_c - a0.y * pr_c, w1_c = pr_c * b0.y - pz_c * b0.x;
+      double lower = radial_lo;
+      auto end_sq = [&](const P2& p, bool box) {
+        const Ia dr_c = rho_c - p.x, dz_c = zeta_c - p.y;
+        const Ia g_c = sqr(dr_c) + sqr(dz_c);
+        if (!box) return g_c;
+        const Ia dr_b = rho - p.x, dz_b = zeta - p.y;
+        return meet(centred(g_c, Ia(2.0) * dr_b, Ia(2.0) * dz_b, 1.0, -1.0), sqr(dr_b) + sqr(dz_b));
+      };
+      if (w0.neg() || w1.neg()) {  // outside the sector: the nearest arc point is an end
+        const double ep = std::min(end_sq(E.a, true).lo(), end_sq(E.b, true).lo());
+        lower = std::max(lower, std::max(0.0, ep));
+      }
+      ev.lower = lower;
+      double up = std::min(end_sq(E.a, false).hi(), end_sq(E.b, false).hi());
+      if (w0_c.nonneg() && w1_c.nonneg()) up = std::min(up, sqr(q_c - E.R).hi());
+      ev.upper = up;
+      pick_split();
+    } else {
+      const Ia V = iv(b.lo[2], b.hi[2]);
+      Ia re, ze, dre, dze, rec, zec;
+      elem_point_deriv(E, V, re, ze, dre, dze);
+      elem_point(E, Ia(c[2]), rec, zec);
+      const Ia dR = rho - re, dZ = zeta - ze;
+      const Ia g_c = sqr(rho_c - rec) + sqr(zeta_c - zec);
+      const Ia two(2.0);
+      const Ia gv = two * (dR * dre + dZ * dze);
+      cost[2] = abs(gv).hi() * h[2];
+      const Ia g = meet(centred(g_c, two * dR, two * dZ, 1.0, -1.0) - gv * H[2], sqr(dR) + sqr(dZ));
+      ev.lower = std::max(0.0, g.lo());
+      ev.upper = g_c.hi();
+      pick_split();
+    }
+    return ev;
+  }
+
+  // World points of the pair realising the centre value of a box: [0] on S, [1] on E.
+  void witness(const Box& b, Vec3 out[2]) const {
+    const Job& job = jobs[b.job];
+    const Element& S = elems_[job.s_side][job.s_elem];
+    const Element& E = elems_[1 - job.s_side][job.e_elem];
+    double c[3];
+    for (int i = 0; i < 3; ++i) c[i] = 0.5 * (b.lo[i] + b.hi[i]);
+    Ia r, z;
+    elem_point(S, Ia(c[0]), r, z);
+    const double psi = psi_of(c[1]);
+    const Vec3 local(mid(r) * std::cos(psi), mid(r) * std::sin(psi), mid(z));
+    out[0] = poses_[job.s_side].apply(local);
+    Ia rho_c, zeta_c, yc[3];
+    meridian(job, Ia(c[0]), c[1], rho_c, zeta_c, yc);
+    const Vec2 P(mid(rho_c), mid(zeta_c));
+    Vec2 Q;
+    if (E.kind == ElemKind::line) {
+      const Vec2 a(mid(E.a.x), mid(E.a.y)), e = Vec2(mid(E.b.x), mid(E.b.y)) - a;
+      Q = a + std::clamp((P - a).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
+    } else if (E.kind == ElemKind::arc) {
+      const Vec2 cc(mid(E.c.x), mid(E.c.y)), q0(mid(E.a.x), mid(E.a.y)), q1(mid(E.b.x), mid(E.b.y));
+      const Vec2 d = P - cc;
+      const auto crs = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+      if (d.norm() > 0 && crs(q0 - cc, d) >= 0 && crs(d, q1 - cc) >= 0)
+        Q = cc + mid(E.R) * d / d.norm();
+      else
+        Q = (P - q0).norm() <= (P - q1).norm() ? q0 : q1;
+    } else {
+      Ia re, ze;
+      elem_point(E, Ia(c[2]), re, ze);
+      Q = Vec2(mid(re), mid(ze));
+    }
+    const double phi = std::atan2(mid(yc[1]), mid(yc[0]));
+    out[1] = poses_[1 - job.s_side].apply(Vec3(Q.x() * std::cos(phi), Q.x() * std::sin(phi), Q.y()));
+  }
+
+  // Is S's surface point at (u, s) of this job strictly inside the other solid?
+  Inside test_point(int side, int elem, double u, double s, Vec3* world) const {
+    Ia y[3];
+    surface_point(elems_[side][elem], frames_[side], Ia(u), s, y);
+    const Ia rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1]));
+    const Inside in = point_in_solid(elems_[1 - side], rho, y[2]);
+    if (world) {
+      Ia r, z;
+      elem_point(elems_[side][elem], Ia(u), r, z);
+      const double psi = psi_of(s);
+      *world = poses_[side].apply(Vec3(mid(r) * std::cos(psi), mid(r) * std::sin(psi), mid(z)));
+    }
+    return in;
+  }
+
+  bool coaxial() const { return coaxial_; }
+
+ private:
+  static double mid(const Ia& x) { return 0.5 * (x.lo() + x.hi()); }
+
+  const std::vector<Element>* elems_;
+  const Pose* poses_;
+  bool coaxial_;
+  Frame frames_[2];
+};
+
+// Size of a profile for the width target: the extent of its control points.
+double profile_size(const Profile& p) {
+  double rmax = 0.0, zlo = kInf, zhi = -kInf;
+  for (const Piece& piece : p.pieces)
+    for (const Vec2& q : piece.points) {
+      rmax = std::max(rmax, q.x());
+      zlo = std::min(zlo, q.y());
+      zhi = std::max(zhi, q.y());
+    }
+  return std::max(2.0 * rmax, zhi - zlo);
+}
+
+double round_down_sqrt(double x) { return x > 0 ? std::nextafter(std::sqrt(x), 0.0) : 0.0; }
+double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
+
+}  // namespace
+
+ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, const Profile& b, const Pose& pose_b,
+                                      const ExactSolidOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ExactSolidResult res;
+  res.upper = kInf;
+  auto finish = [&]() {
+    res.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return res;
+  };
+  std::string why;
+  std::vector<Element> elems[2];
+  elems[0] = profile_elements(a, &why);
+  if (elems[0].empty()) {
+    res.reason = "solid a: " + why;
+    return finish();
+  }
+  elems[1] = profile_elements(b, &why);
+  if (elems[1].empty()) {
+    res.reason = "solid b: " + why;
+    return finish();
+  }
+  const Pose poses[2] = {pose_a, pose_b};
+  res.scale = std::max({profile_size(a), profile_size(b), (pose_a.translation - pose_b.translation).norm()});
+  const double tol = options.relative_width * res.scale;
+  Solver solver(elems, poses, exactly_coaxial(pose_a, pose_b));
+  solver.make_jobs();
+
+  auto report_overlap = [&](const Vec3& p) {
+    res.certified = true;
+    res.overlap = true;
+    res.lower = res.upper = 0.0;
+    res.width_reached = true;
+    res.point_a = res.point_b = p;
+    return finish();
+  };
+
+  // Screen: a sampled surface point strictly inside the other solid proves a shared point.
+  const int n_psi = solver.coaxial() ? 1 : 8;
+  for (int side = 0; side < 2; ++side)
+    for (std::size_t e = 0; e < elems[side].size(); ++e)
+      for (double u : {0.5, 0.2, 0.8})
+        for (int k = 0; k < n_psi; ++k) {
+          Vec3 p;
+          if (solver.test_point(side, static_cast<int>(e), u, 2.0 * (k + 0.5) / n_psi, &p) == Inside::inside)
+            return report_overlap(p);
+        }
+
+  // Branch and bound over the surfaces.
+  std::priority_queue<Box, std::vector<Box>, std::greater<Box>> queue;
+  std::vector<Box> stuck;  // boxes that cannot be halved further: their lower bounds stay
+  double stuck_min = kInf;
+  double ub = kInf;
+  Box best;
+  auto consider = [&](Box bx) {
+    const Eval ev = solver.evaluate(bx);
+    ++res.boxes;
+    bx.lower = ev.lower;
+    bx.split = ev.split;
+    if (ev.upper < ub) {
+      ub = ev.upper;
+      best = bx;
+    }
+    if (bx.lower >= ub) return;  // cannot hold a smaller value than a genuine pair already has
+    if (ev.split < 0) {
+      stuck.push_back(bx);
+      stuck_min = std::min(stuck_min, bx.lower);
+    } else
+      queue.push(bx);
+  };
+  const int n_s = solver.coaxial() ? 1 : 4;
+  for (std::size_t j = 0; j < solver.jobs.size(); ++j)
+    for (int k = 0; k < n_s; ++k) {
+      Box bx;
+      bx.job = static_cast<int>(j);
+      bx.lo[0] = 0.0;
+      bx.hi[0] = 1.0;
+      bx.lo[1] = solver.coaxial() ? 0.0 : 2.0 * k / n_s;  // n_s even: no box straddles the charts' seam s = 1
+      bx.hi[1] = solver.coaxial() ? 0.0 : 2.0 * (k + 1) / n_s;
+      bx.lo[2] = 0.0;
+      bx.hi[2] = solver.jobs[j].three_d ? 1.0 : 0.0;
+      consider(bx);
+    }
+  auto min_lower = [&]() {
+    double m = std::min(ub, stuck_min);
+    if (!queue.empty()) m = std::min(m, queue.top().lower);
+    return m;
+  };
+  long pops = 0;
+  bool budget_hit = false;
+  while (!queue.empty()) {
+    const Box top = queue.top();
+    if (top.lower >= ub) {  // every remaining box is at least as far
+      while (!queue.empty()) queue.pop();
+      break;
+    }
+    if (std::sqrt(ub) - std::sqrt(std::min(top.lower, stuck_min)) <= 0.5 * tol) break;
+    if (res.boxes >= options.max_boxes) {
+      budget_hit = true;
+      break;
+    }
+    queue.pop();
+    ++pops;
+    // Crossing surfaces keep the lower bound at 0 along a curve: look for a proof
+    // of overlap near the best pair now and then.
+    if (top.lower <= 0.0 && pops % 512 == 0) {
+      const Job& job = solver.jobs[best.job];
+      const double uc = 0.5 * (best.lo[0] + best.hi[0]), sc = 0.5 * (best.lo[1] + best.hi[1]);
+      for (double d : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6})
+        for (int du = -1; du <= 1; ++du)
+          for (int ds = -1; ds <= 1; ++ds) {
+            const double u = std::clamp(uc + du * d, 0.0, 1.0), s = std::clamp(sc + ds * d, 0.0, 2.0);
+            Vec3 p;
+            if (solver.test_point(job.s_side, job.s_elem, u, s, &p) == Inside::inside) return report_overlap(p);
+          }
+    }
+    const int i = top.split;
+    Box l = top, r = top;
+    const double m = 0.5 * (top.lo[i] + top.hi[i]);
+    l.hi[i] = m;
+    r.lo[i] = m;
+    consider(l);
+    consider(r);
+  }
+  const double lsq = min_lower();
+  res.certified = true;
+  res.lower = round_down_sqrt(lsq);
+  res.upper = round_up_sqrt(ub);
+  Vec3 w[2];
+  solver.witness(best, w);
+  const int s_side = solver.jobs[best.job].s_side;
+  res.point_a = w[s_side];
+  res.point_b = w[1 - s_side];
+  if (budget_hit) res.reason = "box budget reached before the width target";
+  if (!stuck.empty() && res.reason.empty()) res.reason = "boxes at rounding size remain";
+
+  if (res.lower > 0.0) {
+    // The surfaces are disjoint: a boundary point of each outside the other solid
+    // rules out containment (both boundaries are connected).
+    for (int side = 0; side < 2; ++side) {
+      Inside decided = Inside::unknown;
+      Vec3 p;
+      for (std::size_t e = 0; e < elems[side].size() && decided == Inside::unknown; ++e)
+        for (double s : {0.0, 0.6283185307179586, 1.4})
+          if ((decided = solver.test_point(side, static_cast<int>(e), 0.5, s, &p)) != Inside::unknown) break;
+      if (decided == Inside::inside) return report_overlap(p);  // containment (the screen normally finds it first)
+      if (decided == Inside::unknown) {
+        res.lower = 0.0;
+        res.reason = "containment not decided (boundary points too close to the other surface)";
+      }
+    }
+  } else if (res.reason.empty() && res.upper > tol) {
+    res.reason = "surfaces touch or cross; overlap not proven";
+  }
+  res.width_reached = res.upper - res.lower <= tol;
+  if (!res.width_reached && res.reason.empty()) res.reason = "width target not reached";
+  return finish();
+}
+
+}  // namespace revdist
