@@ -217,54 +217,60 @@ class Solver {
       }
     };
 
+    // |P - p|^2 for a point p of the target: over the box (mean-value form) or at the centre.
+    auto end_sq = [&](const P2& p, bool box) {
+      const Ia dr_c = rho_c - p.x, dz_c = zeta_c - p.y;
+      const Ia g_c = sqr(dr_c) + sqr(dz_c);
+      if (!box) return g_c;
+      const Ia dr_b = rho - p.x, dz_b = zeta - p.y;
+      return meet(centred(g_c, Ia(2.0) * dr_b, Ia(2.0) * dz_b, 1.0, -1.0), sqr(dr_b) + sqr(dz_b));
+    };
+    // Where the nearest target point is certainly one end, the squared distance is
+    // one smooth function and its own mean-value form is tight; a sum of separately
+    // bounded terms would not be (their gradients cancel at the minimum).
     if (E.kind == ElemKind::line) {
       const P2 e = E.b - E.a;
       const Ia e2 = fit_audit_detail::dot(e, e);
       const Ia cr_c = e.x * (zeta_c - E.a.y) - e.y * (rho_c - E.a.x);
-      const double elen = fit_audit_detail::sqrt_nonneg(e2).lo();
-      const Ia cr = meet(centred(cr_c, -e.y, e.x, 1.0 / elen, abs(cr_c).hi() / elen),
-                         e.x * (zeta - E.a.y) - e.y * (rho - E.a.x));
       const Ia t_c = ((rho_c - E.a.x) * e.x + (zeta_c - E.a.y) * e.y) / e2;
       const Ia t_nat = ((rho - E.a.x) * e.x + (zeta - E.a.y) * e.y) / e2;
-      // The tangential part lowers the bound only where the centre's foot is off the segment.
-      const double exc_c = std::max({0.0, -t_c.lo(), (t_c - Ia(1.0)).hi()});
-      const Ia t = meet(centred(t_c, e.x / e2, e.y / e2, exc_c > 0 ? elen : 0.0, exc_c * elen), t_nat);
-      const double exc_lo = std::max({0.0, -t.hi(), (t - Ia(1.0)).lo()});
       const double exc_hi = std::max({0.0, -t_c.lo(), (t_c - Ia(1.0)).hi()});
-      ev.lower = (Ia(sq_lo(mig(cr))) / e2 + e2 * Ia(sq_lo(exc_lo))).lo();
+      if (t_nat.neg() || (t_nat - Ia(1.0)).pos()) {  // the foot is off the segment: nearest point is an end
+        ev.lower = std::max(0.0, end_sq(t_nat.neg() ? E.a : E.b, true).lo());
+      } else {
+        const double elen = fit_audit_detail::sqrt_nonneg(e2).lo();
+        const Ia cr = meet(centred(cr_c, -e.y, e.x, 1.0 / elen, abs(cr_c).hi() / elen),
+                           e.x * (zeta - E.a.y) - e.y * (rho - E.a.x));
+        // The tangential part lowers the bound only where the centre's foot is off the segment.
+        const Ia t = meet(centred(t_c, e.x / e2, e.y / e2, exc_hi > 0 ? elen : 0.0, exc_hi * elen), t_nat);
+        const double exc_lo = std::max({0.0, -t.hi(), (t - Ia(1.0)).lo()});
+        ev.lower = (Ia(sq_lo(mig(cr))) / e2 + e2 * Ia(sq_lo(exc_lo))).lo();
+      }
       ev.upper = (sqr(cr_c) / e2 + e2 * sqr(Ia(exc_hi))).hi();
       pick_split();
     } else if (E.kind == ElemKind::arc) {
       const Ia pr = rho - E.c.x, pz = zeta - E.c.y;
       const Ia pr_c = rho_c - E.c.x, pz_c = zeta_c - E.c.y;
-      const Ia q_nat = fit_audit_detail::sqrt_nonneg(sqr(pr) + sqr(pz));
       const Ia q_c = fit_audit_detail::sqrt_nonneg(sqr(pr_c) + sqr(pz_c));
-      Ia q;
-      if (q_nat.pos()) {
-        q = meet(centred(q_c, pr / q_nat, pz / q_nat, 1.0, abs(q_c - E.R).hi()), q_nat);
-      } else {  // the box may reach the centre: |P - c| is 1-Lipschitz in P
-        q = q_nat;
-        for (int i = 0; i < 2; ++i)
-          add_cost(i, fit_audit_detail::sqrt_nonneg(sqr(drho[i]) + sqr(dzeta[i])).hi() * h[i], abs(q_c - E.R).hi());
-      }
-      const double radial_lo = sq_lo(mig(q - E.R));
       // The closed sector: cross(q0 - c, P - c) >= 0 and cross(P - c, q1 - c) >= 0.
       const P2 a0 = E.a - E.c, b0 = E.b - E.c;
       const Ia w0 = a0.x * pz - a0.y * pr, w1 = pr * b0.y - pz * b0.x;
       const Ia w0_c = a0.x * pz_c - a0.y * pr_c, w1_c = pr_c * b0.y - pz_c * b0.x;
-      double lower = radial_lo;
-      auto end_sq = [&](const P2& p, bool box) {
-        const Ia dr_c = rho_c - p.x, dz_c = zeta_c - p.y;
-        const Ia g_c = sqr(dr_c) + sqr(dz_c);
-        if (!box) return g_c;
-        const Ia dr_b = rho - p.x, dz_b = zeta - p.y;
-        return meet(centred(g_c, Ia(2.0) * dr_b, Ia(2.0) * dz_b, 1.0, -1.0), sqr(dr_b) + sqr(dz_b));
-      };
       if (w0.neg() || w1.neg()) {  // outside the sector: the nearest arc point is an end
-        const double ep = std::min(end_sq(E.a, true).lo(), end_sq(E.b, true).lo());
-        lower = std::max(lower, std::max(0.0, ep));
+        const Ia ga = end_sq(E.a, true), gb = end_sq(E.b, true);
+        ev.lower = std::max(0.0, std::min(ga.lo(), gb.lo()));
+      } else {  // the whole circle is nearer than the arc
+        const Ia q_nat = fit_audit_detail::sqrt_nonneg(sqr(pr) + sqr(pz));
+        Ia q;
+        if (q_nat.pos()) {
+          q = meet(centred(q_c, pr / q_nat, pz / q_nat, 1.0, abs(q_c - E.R).hi()), q_nat);
+        } else {  // the box may reach the centre: |P - c| is 1-Lipschitz in P
+          q = q_nat;
+          for (int i = 0; i < 2; ++i)
+            add_cost(i, fit_audit_detail::sqrt_nonneg(sqr(drho[i]) + sqr(dzeta[i])).hi() * h[i], abs(q_c - E.R).hi());
+        }
+        ev.lower = sq_lo(mig(q - E.R));
       }
-      ev.lower = lower;
       double up = std::min(end_sq(E.a, false).hi(), end_sq(E.b, false).hi());
       if (w0_c.nonneg() && w1_c.nonneg()) up = std::min(up, sqr(q_c - E.R).hi());
       ev.upper = up;
@@ -389,7 +395,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   }
   const Pose poses[2] = {pose_a, pose_b};
   res.scale = std::max({profile_size(a), profile_size(b), (pose_a.translation - pose_b.translation).norm()});
-  const double tol = options.relative_width * res.scale;
+  const double tol = options.absolute_width > 0 ? options.absolute_width : options.relative_width * res.scale;
   Solver solver(elems, poses, exactly_coaxial(pose_a, pose_b));
   solver.make_jobs();
 

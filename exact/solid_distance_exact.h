@@ -16,7 +16,8 @@ struct ExactSolidOptions {
   // Target width of [lower, upper] relative to the scale of the query (the larger
   // of the two solids' sizes and the distance between their frame origins).
   double relative_width = 1e-9;
-  long max_boxes = 2000000;  // work budget: parameter boxes evaluated
+  double absolute_width = 0.0;  // > 0: the target width itself, instead of relative_width * scale
+  long max_boxes = 2000000;     // work budget: parameter boxes evaluated
 };
 
 struct ExactSolidResult {
@@ -26,7 +27,7 @@ struct ExactSolidResult {
   bool certified = false;
   std::string reason;            // certified: empty, or why the width target was not reached
   double lower = 0.0, upper = 0.0;  // doubles rounded outward from the proven interval
-  bool width_reached = false;    // upper - lower <= relative_width * scale
+  bool width_reached = false;    // upper - lower <= the target width
   bool overlap = false;          // proven: a point lies strictly inside both solids (lower = upper = 0)
   Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  // world points on the two surfaces, |a - b| ~ upper
   double scale = 0.0;
