@@ -83,9 +83,19 @@ struct Builder {
       tree.nodes[node].child = c;
       build_exact(c, left);
       build_exact(c + 1, right);
-      set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
+      // The node keeps the whole exact arc as its fit (bounds for the traversal).
+      tree.nodes[node].fit = add_fit(exact_fit(s, length));
+      set_capsule(node, lens_capsule_of(s.ends));
       return;
     }
+    const BiarcFit f = exact_fit(s, length);
+    set_capsule(node, lens_capsule_of(s.ends));
+    tree.nodes[node].fit = add_fit(f);
+    note_leaf(f);
+  }
+
+  // The one exact Arc2 of an input line or arc span.
+  BiarcFit exact_fit(const SpiralSpan& s, double length) const {
     BiarcFit f;
     f.piece = s.piece;
     f.kind = s.kind;
@@ -99,11 +109,13 @@ struct Builder {
     a.length = length;
     f.arc[1] = Arc2{a.end(), a.end_tangent(), a.curvature, 0.0};
     f.eps = slack;
-    Capsule c = lens_capsule(s.ends, lens_bound(s.ends));
+    return f;
+  }
+
+  Capsule lens_capsule_of(const SpanEnds& e) const {
+    Capsule c = lens_capsule(e, lens_bound(e));
     c.radius += slack;
-    set_capsule(node, c);
-    tree.nodes[node].fit = add_fit(f);
-    note_leaf(f);
+    return c;
   }
 
   void build_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,

@@ -116,6 +116,51 @@ CircleInAxisFrame circle_in_axis_frame(const Circle3& C, const Patch& K) {
   return k;
 }
 
+// Newton on the unsquared condition h'(θ) = s n_r ρ' + n_z z' = 0 for the
+// branch s = +1 (the generator in P's half-plane) or -1 (its mirror) that
+// vanishes at th. Squaring made double roots of simple ones (for a cylinder,
+// n_z = 0, every root is double), which a root finder only places to about
+// sqrt(ε); the distance there would be off at second order.
+double polish_circle_cone(const Circle3& C, const CircleFrame& f, const Patch& K, double th) {
+  const Vec3 D = C.center - K.o;
+  const Vec3 U = C.radius * f.u, V = C.radius * f.v;
+  const double nr = K.n.x(), nz = K.n.y();
+  auto eval = [&](double t, double s, double* d1, double* d2) {
+    const double c = std::cos(t), sn = std::sin(t);
+    const Vec3 X = D + U * c + V * sn, X1 = V * c - U * sn, X2 = -(U * c + V * sn);
+    const double z = X.dot(K.a), z1 = X1.dot(K.a), z2 = X2.dot(K.a);
+    const double q = X.squaredNorm() - z * z;
+    const double q1 = 2 * X.dot(X1) - 2 * z * z1;
+    const double q2 = 2 * (X1.squaredNorm() + X.dot(X2)) - 2 * (z1 * z1 + z * z2);
+    const double rho = std::sqrt(std::max(q, 0.0));
+    if (!(rho > 0)) return false;
+    const double r1 = q1 / (2 * rho), r2 = (q2 / 2 - r1 * r1) / rho;
+    *d1 = s * nr * r1 + nz * z1;
+    *d2 = s * nr * r2 + nz * z2;
+    return true;
+  };
+  double s = 1, best = std::numeric_limits<double>::infinity();
+  for (double side : {1.0, -1.0}) {
+    double d1, d2;
+    if (eval(th, side, &d1, &d2) && std::abs(d1) < best) {
+      best = std::abs(d1);
+      s = side;
+    }
+  }
+  double t = th;
+  for (int it = 0; it < 8; ++it) {
+    double d1, d2;
+    if (!eval(t, s, &d1, &d2) || d2 == 0) break;
+    const double step = d1 / d2;
+    if (!(std::abs(step) < 0.1)) break;  // not converging to this root: keep the last point
+    double n1, n2;
+    if (!eval(t - step, s, &n1, &n2) || std::abs(n1) > std::abs(d1)) break;
+    t -= step;
+    if (std::abs(step) < 1e-15) break;
+  }
+  return t;
+}
+
 }  // namespace
 
 int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* degenerate) {
@@ -139,7 +184,7 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
   int n = 0;
   if (max_abs(F) > 256 * kEps * max_abs(Fa)) {
     n = trig_poly_roots(F.c, 8, th);
-    for (int i = 0; i < n; ++i) out[i] = point(th[i]);
+    for (int i = 0; i < n; ++i) out[i] = point(polish_circle_cone(C, k.f, K, th[i]));
     return n;
   }
   // h is constant on C: the ends of the arcs of C whose feet fall in the segment.
@@ -208,6 +253,47 @@ int pair_feet(const Patch& A, const Patch& B, const Vec3& QA, const Vec3& QB, co
   return k;
 }
 
+// Newton on the unsquared angle conditions d . a = s1 n_zA |d|, d . b =
+// s2 n_zB |d| (d = w + μ b - λ a, scaled units), signs taken from the
+// approximate root. The squared system has double roots (every one for two
+// cylinders), so the resultant's roots are only good to about sqrt(ε).
+void polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA, double nzB, double* lam, double* mu) {
+  const double c = a.dot(b);
+  struct State {
+    double da, db, len;  // d . a, d . b, |d|
+  };
+  auto state = [&](double l, double m) {
+    const Vec3 d = w + m * b - l * a;
+    return State{d.dot(a), d.dot(b), d.norm()};
+  };
+  State st = state(*lam, *mu);
+  if (!(st.len > 0)) return;
+  const double s1 = st.da * nzA >= 0 ? 1 : -1, s2 = st.db * nzB >= 0 ? 1 : -1;
+  auto residual = [&](const State& x) {
+    return Vec2(x.da - s1 * nzA * x.len, x.db - s2 * nzB * x.len);
+  };
+  double l = *lam, m = *mu;
+  Vec2 f = residual(st);
+  for (int it = 0; it < 8; ++it) {
+    const double j11 = -1 + s1 * nzA * st.da / st.len, j12 = c - s1 * nzA * st.db / st.len;
+    const double j21 = -c + s2 * nzB * st.da / st.len, j22 = 1 - s2 * nzB * st.db / st.len;
+    const double det = j11 * j22 - j12 * j21;
+    if (det == 0) break;
+    const double dl = (f.x() * j22 - f.y() * j12) / det, dm = (j11 * f.y() - j21 * f.x()) / det;
+    const State next = state(l - dl, m - dm);
+    if (!(next.len > 0)) break;
+    const Vec2 g = residual(next);
+    if (g.norm() > f.norm()) break;  // not converging: keep the last point
+    l -= dl;
+    m -= dm;
+    st = next;
+    f = g;
+    if (std::abs(dl) + std::abs(dm) < 1e-16) break;
+  }
+  *lam = l;
+  *mu = m;
+}
+
 }  // namespace
 
 int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, bool* degenerate) {
@@ -268,8 +354,10 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
       lams[nl++] = (-e1b - sq) / (2 * e1a);
     }
     for (int j = 0; j < nl && k <= 12; ++j) {
-      const Vec3 QA = A.o + (lams[j] / sigma) * A.a;
-      const Vec3 QB = B.o + (mu / sigma) * B.a;
+      double lam = lams[j], mu_p = mu;
+      polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu_p);
+      const Vec3 QA = A.o + (lam / sigma) * A.a;
+      const Vec3 QB = B.o + (mu_p / sigma) * B.a;
       Vec3 d = QB - QA;
       if (d.norm() > 1e-12 / sigma) {
         k += pair_feet(A, B, QA, QB, d, x_out + k, y_out + k);

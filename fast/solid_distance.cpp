@@ -39,6 +39,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Part {
   std::int32_t node = -1;   // tree node, -1 for a refinement
   bool has_fit = false;     // leaves and refinements: compared by patches
+  bool bound_fit = false;   // a fit holds the part (within its eps): its patches bound it
   BiarcFit fit;
   Vec2 disk_c = Vec2::Zero();
   double disk_r = 0.0;
@@ -71,8 +72,9 @@ struct Solid {
     p.level = level;
     p.disk_c = 0.5 * (n.seg_a + n.seg_b);
     p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
-    if (n.leaf() && n.fit >= 0) {
-      p.has_fit = true;
+    if (n.fit >= 0) {
+      p.bound_fit = true;
+      p.has_fit = n.leaf();
       p.fit = s.tree->fits[n.fit];
     }
     return p;
@@ -128,6 +130,7 @@ struct Solid {
       Part& c = *out[h];
       c.level = p.level + 1;
       c.has_fit = true;
+      c.bound_fit = true;
       BiarcFit& f = c.fit;
       f = p.fit;
       f.u0 = us[h];
@@ -205,12 +208,29 @@ struct Entry {
   bool operator<(const Entry& o) const { return lb > o.lb; }  // min-heap
 };
 
-double disk_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
+// Lower bound between two parts: their bounding tori (disks rotated); when
+// both parts carry a fit and that is not enough to reach `cutoff`, the fits'
+// patches (each within its eps of the part), whose cheap bounds include the
+// tube around a torus patch's major circle (paper: every node's toroidal
+// patches bound it).
+double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb, double cutoff) {
   const Circle3 ca = A.disk_circle(pa), cb = B.disk_circle(pb);
   // Bounding spheres first: cheaper than the circle distance.
   const double sphere = (ca.center - cb.center).norm() - (ca.radius + pa.disk_r) - (cb.radius + pb.disk_r);
-  if (sphere > 0) return sphere;
-  return circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r;
+  if (sphere >= cutoff) return sphere;
+  double lb = std::max(sphere, circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r);
+  if (lb >= cutoff || !pa.bound_fit || !pb.bound_fit) return lb;
+  if (!(pa.fit.eps < kInf && pb.fit.eps < kInf)) return lb;
+  double fits = kInf;
+  for (int i = 0; i < pa.fit.arcs; ++i) {
+    if (pa.fit.arc[i].length <= 0) continue;
+    const Patch P = make_patch(pa.fit.arc[i], A.s.R, A.s.t);
+    for (int j = 0; j < pb.fit.arcs; ++j) {
+      if (pb.fit.arc[j].length <= 0) continue;
+      fits = std::min(fits, patch_pair_quick(P, make_patch(pb.fit.arc[j], B.s.R, B.s.t)).lower);
+    }
+  }
+  return std::max(lb, fits - pa.fit.eps - pb.fit.eps);
 }
 
 }  // namespace
@@ -258,12 +278,12 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   }
 
   std::priority_queue<Entry> heap;
-  heap.push({disk_bound(A, A.parts[0], B, B.parts[0]), 0, 0});
+  heap.push({pair_bound(A, A.parts[0], B, B.parts[0], kInf), 0, 0});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
   bool unresolved = false;
 
   auto push_pair = [&](std::int32_t ia, std::int32_t ib) {
-    const double lb = disk_bound(A, A.parts[ia], B, B.parts[ib]);
+    const double lb = pair_bound(A, A.parts[ia], B, B.parts[ib], ub - opt.tol);
     if (lb >= ub - opt.tol) settled_lb = std::min(settled_lb, lb);
     else heap.push({lb, ia, ib});
   };
