@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -30,96 +31,96 @@ struct Options {
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
-void run(const Options& o) {
-  if (!(o.eps > 0) || !(o.tol > 0))
-    throw InputError("--eps and --tol must be positive");
-  if (o.engine == "exact") {
-    // The certified engine (exact/solid_distance_exact.h) works on the input curves
-    // themselves (no biarc trees, so --eps does not apply): lower/upper are doubles
-    // rounded outward from a proven interval; "converged" means upper - lower <= tol.
-    const Case c = read_case(o.file);
-    ExactSolidOptions xo;
-    xo.absolute_width = o.tol;
-    Json results = Json::array();
-    Table table({"a", "b", "distance", "lower", "upper", "overlap", "converged", "boxes", "time_us"});
-    const auto start = std::chrono::steady_clock::now();
-    bool progress_shown = false;
-    for (std::size_t q = 0; q < c.queries.size(); ++q) {
-      const auto [ia, ib] = c.queries[q];
-      const Instance& ins_a = c.instances[ia];
-      const Instance& ins_b = c.instances[ib];
-      const Profile pa = profile_at(c.solids[ins_a.solid], ins_a.time);
-      const Profile pb = profile_at(c.solids[ins_b.solid], ins_b.time);
-      const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo);
-      const bool converged = r.certified && r.upper - r.lower <= o.tol;
-      const double distance = r.certified ? 0.5 * r.lower + 0.5 * r.upper : r.upper;
-      const double us = r.time_ms * 1e3;
-      Json j{{"a", ins_a.name},
-             {"b", ins_b.name},
-             {"lower", r.lower},
-             {"upper", r.certified ? Json(r.upper) : Json(nullptr)},
-             {"distance", distance},
-             {"overlap", r.overlap},
-             {"converged", converged},
-             {"certified", r.certified},
-             {"point_a", vec_json(r.point_a)},
-             {"point_b", vec_json(r.point_b)},
-             {"stats", {{"boxes", r.boxes}, {"time_us", us}}}};
-      if (!r.reason.empty()) j["reason"] = r.reason;
-      results.push_back(j);
-      table.add({ins_a.name, ins_b.name, full(distance), full(r.lower), full(r.upper), r.overlap ? "yes" : "no",
-                 converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.boxes), fixed_digits(us, 4)});
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (elapsed > 1.0 && q + 1 < c.queries.size()) {
-        std::fprintf(stderr, "\rdistance: %zu/%zu queries", q + 1, c.queries.size());
-        progress_shown = true;
-      }
-    }
-    if (progress_shown) std::fprintf(stderr, "\n");
-    if (o.json) {
-      const Json doc{{"format", "revdist-result/1"}, {"engine", "exact"}, {"eps", o.eps},
-                     {"tol", o.tol},                 {"results", results}};
-      std::printf("%s\n", doc.dump(1).c_str());
-    } else {
-      std::printf("%s", table.str().c_str());
-    }
-    return;
-  }
-  const Case c = read_case(o.file);
-  const CaseModel model = build_case_model(c, o.eps);
-  DistanceOptions opt;
-  opt.tol = o.tol;
+// One query's answer, whichever engine gave it.
+struct Answer {
+  Json json;  // the result record of SPEC section 5
+  std::vector<std::string> row;
+};
 
+std::string yes_no(bool b) { return b ? "yes" : "no"; }
+
+// The fast engine: biarc trees at eps, then the traversal per query.
+class FastEngine {
+ public:
+  FastEngine(const Case& c, const Options& o) : c_(c), model_(build_case_model(c, o.eps)) { opt_.tol = o.tol; }
+  Answer query(std::size_t ia, std::size_t ib) const {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SolidDistanceResult r = solid_distance(model_.instances[ia], model_.instances[ib], opt_);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    Answer a;
+    a.json = {{"a", c_.instances[ia].name},      {"b", c_.instances[ib].name},
+              {"lower", r.lower},                {"upper", r.upper},
+              {"distance", r.distance},          {"overlap", r.overlap},
+              {"converged", r.converged},        {"point_a", vec_json(r.point_a)},
+              {"point_b", vec_json(r.point_b)},
+              {"stats", {{"node_pairs", r.stats.node_pairs},
+                         {"leaf_pairs", r.stats.leaf_pairs},
+                         {"patch_pairs", r.stats.patch_pairs},
+                         {"refined_parts", r.stats.refined},
+                         {"time_us", us}}}};
+    if (!r.converged) a.json["reason"] = r.reason;
+    a.row = {c_.instances[ia].name, c_.instances[ib].name, full(r.distance), full(r.lower), full(r.upper),
+             yes_no(r.overlap), r.converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.stats.node_pairs),
+             fixed_digits(us, 4)};
+    return a;
+  }
+
+ private:
+  const Case& c_;
+  CaseModel model_;
+  DistanceOptions opt_;
+};
+
+// The certified engine (exact/solid_distance_exact.h) works on the input
+// curves themselves (no biarc trees, so --eps does not apply): lower/upper are
+// doubles rounded outward from a proven interval; "converged" means
+// upper - lower <= tol.
+class ExactEngine {
+ public:
+  ExactEngine(const Case& c, const Options& o) : c_(c), tol_(o.tol) { xo_.absolute_width = o.tol; }
+  Answer query(std::size_t ia, std::size_t ib) const {
+    const Instance& ins_a = c_.instances[ia];
+    const Instance& ins_b = c_.instances[ib];
+    const Profile pa = profile_at(c_.solids[ins_a.solid], ins_a.time);
+    const Profile pb = profile_at(c_.solids[ins_b.solid], ins_b.time);
+    const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo_);
+    const bool converged = r.certified && r.upper - r.lower <= tol_;
+    const double distance = r.certified ? 0.5 * r.lower + 0.5 * r.upper : r.upper;
+    const double us = r.time_ms * 1e3;
+    Answer a;
+    a.json = {{"a", ins_a.name},
+              {"b", ins_b.name},
+              {"lower", r.lower},
+              {"upper", r.certified ? Json(r.upper) : Json(nullptr)},
+              {"distance", distance},
+              {"overlap", r.overlap},
+              {"converged", converged},
+              {"certified", r.certified},
+              {"point_a", vec_json(r.point_a)},
+              {"point_b", vec_json(r.point_b)},
+              {"stats", {{"boxes", r.boxes}, {"time_us", us}}}};
+    if (!r.reason.empty()) a.json["reason"] = r.reason;
+    a.row = {ins_a.name, ins_b.name, full(distance), full(r.lower), full(r.upper), yes_no(r.overlap),
+             converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.boxes), fixed_digits(us, 4)};
+    return a;
+  }
+
+ private:
+  const Case& c_;
+  double tol_;
+  ExactSolidOptions xo_;
+};
+
+template <class Engine>
+void answer_all(const Case& c, const Engine& engine, const Options& o, const char* work_column) {
   Json results = Json::array();
-  Table table({"a", "b", "distance", "lower", "upper", "overlap", "converged", "pairs", "time_us"});
+  Table table({"a", "b", "distance", "lower", "upper", "overlap", "converged", work_column, "time_us"});
   const auto start = std::chrono::steady_clock::now();
   bool progress_shown = false;
   for (std::size_t q = 0; q < c.queries.size(); ++q) {
-    const auto [ia, ib] = c.queries[q];
-    const auto t0 = std::chrono::steady_clock::now();
-    const SolidDistanceResult r = solid_distance(model.instances[ia], model.instances[ib], opt);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    const std::string& na = c.instances[ia].name;
-    const std::string& nb = c.instances[ib].name;
-    Json j{{"a", na},
-           {"b", nb},
-           {"lower", r.lower},
-           {"upper", r.upper},
-           {"distance", r.distance},
-           {"overlap", r.overlap},
-           {"converged", r.converged},
-           {"point_a", vec_json(r.point_a)},
-           {"point_b", vec_json(r.point_b)},
-           {"stats", {{"node_pairs", r.stats.node_pairs},
-                      {"leaf_pairs", r.stats.leaf_pairs},
-                      {"patch_pairs", r.stats.patch_pairs},
-                      {"refined_parts", r.stats.refined},
-                      {"time_us", us}}}};
-    if (!r.converged) j["reason"] = r.reason;
-    results.push_back(j);
-    table.add({na, nb, full(r.distance), full(r.lower), full(r.upper), r.overlap ? "yes" : "no",
-               r.converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.stats.node_pairs),
-               fixed_digits(us, 4)});
+    Answer a = engine.query(c.queries[q].first, c.queries[q].second);
+    results.push_back(std::move(a.json));
+    table.add(std::move(a.row));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (elapsed > 1.0 && q + 1 < c.queries.size()) {
       std::fprintf(stderr, "\rdistance: %zu/%zu queries", q + 1, c.queries.size());
@@ -133,6 +134,16 @@ void run(const Options& o) {
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
     std::printf("%s", table.str().c_str());
+  }
+}
+
+void run(const Options& o) {
+  if (!(o.eps > 0) || !(o.tol > 0)) throw InputError("--eps and --tol must be positive");
+  const Case c = read_case(o.file);
+  if (o.engine == "exact") {
+    answer_all(c, ExactEngine(c, o), o, "boxes");
+  } else {
+    answer_all(c, FastEngine(c, o), o, "pairs");
   }
 }
 

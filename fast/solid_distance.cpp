@@ -287,6 +287,18 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     if (lb >= ub - opt.tol) settled_lb = std::min(settled_lb, lb);
     else heap.push({lb, ia, ib});
   };
+  // Replaces pair e by the pairs of one side's children.
+  auto split_pair = [&](const Entry& e, bool split_a) {
+    if (split_a) {
+      const std::int32_t c = A.split(e.a, &st.refined);
+      push_pair(c, e.b);
+      push_pair(c + 1, e.b);
+    } else {
+      const std::int32_t c = B.split(e.b, &st.refined);
+      push_pair(e.a, c);
+      push_pair(e.a, c + 1);
+    }
+  };
 
   while (!heap.empty()) {
     const Entry e = heap.top();
@@ -302,16 +314,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     const Part& qb = B.parts[e.b];
     if (!(qa.has_fit && qb.has_fit)) {
       // Descend: split the part without a fit, or the bigger one.
-      const bool split_a = !qa.has_fit && (qb.has_fit || qa.disk_r >= qb.disk_r);
-      if (split_a) {
-        const std::int32_t c = A.split(e.a, &st.refined);
-        push_pair(c, e.b);
-        push_pair(c + 1, e.b);
-      } else {
-        const std::int32_t c = B.split(e.b, &st.refined);
-        push_pair(e.a, c);
-        push_pair(e.a, c + 1);
-      }
+      split_pair(e, !qa.has_fit && (qb.has_fit || qa.disk_r >= qb.disk_r));
       continue;
     }
 
@@ -381,15 +384,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         res.reason = all_separated ? "refinement limit reached" : "patches could not be separated (degenerate contact)";
       continue;
     }
-    if (split_a) {
-      const std::int32_t c = A.split(e.a, &st.refined);
-      push_pair(c, e.b);
-      push_pair(c + 1, e.b);
-    } else {
-      const std::int32_t c = B.split(e.b, &st.refined);
-      push_pair(e.a, c);
-      push_pair(e.a, c + 1);
-    }
+    split_pair(e, split_a);
   }
 
   double lb = settled_lb;
