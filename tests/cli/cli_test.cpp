@@ -4,7 +4,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <filesystem>
+#include <vector>
 #include <cmath>
 #include <fstream>
 #include <cstdio>
@@ -117,5 +120,84 @@ INSTANTIATE_TEST_SUITE_P(BadInput, CliBadCircles,
                          testing::Values("not_json", "infinite_radius", "negative_radius", "zero_normal",
                                          "short_center", "missing_b", "wrong_format", "string_radius",
                                          "does_not_exist"));
+
+}  // namespace
+
+namespace {
+
+// revdist distance and fit on every malformed case: exit 2, nothing on stdout,
+// one line on stderr naming the file.
+class CliBadCases : public testing::TestWithParam<std::string> {};
+
+TEST_P(CliBadCases, DistanceAndFitRejectWithOneLine) {
+  const std::string file = src("cases/bad/" + GetParam() + ".json");
+  for (const std::string cmd : {"distance ", "fit "}) {
+    const CommandRun r = run(cmd + file);
+    EXPECT_EQ(r.status, 2) << cmd;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  }
+}
+
+std::vector<std::string> bad_cases() {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(src("cases/bad")))
+    if (e.path().extension() == ".json") out.push_back(e.path().stem().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(BadCases, CliBadCases, testing::ValuesIn(bad_cases()),
+                         [](const testing::TestParamInfo<std::string>& i) { return i.param; });
+
+TEST(Cli, DistanceJsonHasSpecKeysForBothEngines) {
+  for (const std::string engine : {"fast", "exact"}) {
+    const CommandRun r = run("distance " + src("cases/distance/two_spheres.json") + " --json --engine " + engine);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["format"], "revdist-result/1");
+    EXPECT_EQ(doc["engine"], engine);
+    for (const char* key : {"eps", "tol", "results"}) EXPECT_TRUE(doc.contains(key)) << key;
+    const auto input = nlohmann::json::parse(std::ifstream(src("cases/distance/two_spheres.json")));
+    ASSERT_FALSE(doc["results"].empty());
+    for (const auto& res : doc["results"]) {
+      for (const char* key : {"a", "b", "lower", "upper", "distance", "overlap", "converged", "point_a", "point_b",
+                              "stats"})
+        EXPECT_TRUE(res.contains(key)) << key;
+      EXPECT_TRUE(res["stats"].contains("time_us"));
+      const std::string q = res["a"].get<std::string>() + "-" + res["b"].get<std::string>();
+      if (input.contains("expected") && input["expected"].contains(q)) {
+        const double d = input["expected"][q].get<double>();
+        EXPECT_LE(res["lower"].get<double>(), d + 1e-12) << q;
+        EXPECT_GE(res["upper"].get<double>(), d - 1e-12) << q;
+      }
+    }
+  }
+}
+
+TEST(Cli, FitJsonHasSpecKeysAndAuditCertifies) {
+  const CommandRun r = run("fit " + src("cases/models/pawn.json") + " --eps 1e-4 --json --audit");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(doc["solids"].empty());
+  for (const auto& s : doc["solids"]) {
+    for (const char* key : {"name", "nodes", "leaves", "bytes", "build_us", "max_error", "certified_error"})
+      EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_EQ(s["violations"], 0);
+    EXPECT_LE(s["certified_error"].get<double>(), s["max_error"].get<double>());
+  }
+}
+
+TEST(Cli, FitWritesOneSvgPerSolid) {
+  const std::string dir = testing::TempDir() + "revdist_svg_" + std::to_string(getpid());
+  const CommandRun r = run("fit " + src("cases/models/paper_pairs.json") + " --eps 1e-3 --svg " + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  int svgs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) svgs += e.path().extension() == ".svg";
+  EXPECT_EQ(svgs, 5);  // bottle, cup, lightmil, pawn, table
+  std::filesystem::remove_all(dir);
+}
 
 }  // namespace
