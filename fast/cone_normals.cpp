@@ -257,7 +257,10 @@ int pair_feet(const Patch& A, const Patch& B, const Vec3& QA, const Vec3& QB, co
 // s2 n_zB |d| (d = w + μ b - λ a, scaled units), signs taken from the
 // approximate root. The squared system has double roots (every one for two
 // cylinders), so the resultant's roots are only good to about sqrt(ε).
-void polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA, double nzB, double* lam, double* mu) {
+// Returns |residual| at the end (scaled units). Signs s1, s2 in {-1, 1}, or 0
+// to take them from the starting point.
+double polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA, double nzB, double* lam, double* mu,
+                        double s1 = 0, double s2 = 0) {
   const double c = a.dot(b);
   struct State {
     double da, db, len;  // d . a, d . b, |d|
@@ -267,14 +270,15 @@ void polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA, d
     return State{d.dot(a), d.dot(b), d.norm()};
   };
   State st = state(*lam, *mu);
-  if (!(st.len > 0)) return;
-  const double s1 = st.da * nzA >= 0 ? 1 : -1, s2 = st.db * nzB >= 0 ? 1 : -1;
+  if (!(st.len > 0)) return std::numeric_limits<double>::infinity();
+  if (s1 == 0) s1 = st.da * nzA >= 0 ? 1 : -1;
+  if (s2 == 0) s2 = st.db * nzB >= 0 ? 1 : -1;
   auto residual = [&](const State& x) {
     return Vec2(x.da - s1 * nzA * x.len, x.db - s2 * nzB * x.len);
   };
   double l = *lam, m = *mu;
   Vec2 f = residual(st);
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < 30; ++it) {
     const double j11 = -1 + s1 * nzA * st.da / st.len, j12 = c - s1 * nzA * st.db / st.len;
     const double j21 = -c + s2 * nzB * st.da / st.len, j22 = 1 - s2 * nzB * st.db / st.len;
     const double det = j11 * j22 - j12 * j21;
@@ -292,6 +296,7 @@ void polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA, d
   }
   *lam = l;
   *mu = m;
+  return f.norm();
 }
 
 }  // namespace
@@ -326,58 +331,84 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
   const Poly Res = axpy(1, mul(P, P), -1, mul(S, T));
   const Poly Pa = axpy(std::abs(al2), mul_abs(b0, Poly{{1}, 0}), std::abs(be2), mul_abs(a0, Poly{{1}, 0}));
   const double mag = sum_abs(mul(Pa, Pa)) + sum_abs(mul_abs(S, T)) + 1e-300;
-  if (max_abs(Res) <= 256 * kEps * mag) {
-    *degenerate = true;
-    return 0;
+  int k = 0;
+  // One common normal through Q_A = o_A + λ a and Q_B = o_B + μ b (scaled
+  // units), polished on the unsquared conditions: its feet on both cones.
+  auto emit = [&](double lam, double mu, bool polish) {
+    if (k > 12) return;
+    if (polish) polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu);
+    const Vec3 QA = A.o + (lam / sigma) * A.a;
+    const Vec3 QB = B.o + (mu / sigma) * B.a;
+    Vec3 d = QB - QA;
+    if (d.norm() > 1e-12 / sigma) {
+      k += pair_feet(A, B, QA, QB, d, x_out + k, y_out + k);
+      return;
+    }
+    // The axes meet here: lines through the meeting point at both normal angles.
+    const Vec3 Qm = 0.5 * (QA + QB);
+    const double det = 1 - c * c;
+    for (int s1 : {1, -1})
+      for (int g : {1, -1}) {
+        const double ta = s1 * nzA, tb = nzB;  // d . a, d . b (d and -d are one line)
+        const double al = (ta - c * tb) / det, be = (tb - c * ta) / det;
+        const Vec3 base = al * A.a + be * B.a;
+        const double rest = 1 - base.squaredNorm();
+        if (rest < 0) continue;
+        d = base + g * std::sqrt(rest / axb.squaredNorm()) * axb;
+        if (k + 4 > 16) return;
+        k += pair_feet(A, B, Qm, Qm, d, x_out + k, y_out + k);
+        if (rest == 0) break;
+      }
+  };
+  if (nzA == 0 && nzB == 0) {
+    // Two cylinders: the common normals are the common perpendicular of the
+    // axes (closed form; the squared system has only quadruple roots).
+    const double det = 1 - c * c;
+    emit((wa - c * wb) / det, (c * wa - wb) / det, false);
+    return k;
   }
   const double margin = 1e-6;  // in scaled units: the range check on the feet decides
   const double lo = std::min(zb0, zb1) * sigma - margin, hi = std::max(zb0, zb1) * sigma + margin;
+  if (max_abs(Res) <= 256 * kEps * mag) {
+    // The resultant vanishes to rounding (axes nearly parallel, or a special
+    // pose): Newton on the unsquared conditions from a grid of starts over
+    // both axes' ranges and both normal orientations; only converged roots.
+    const double za0 = A.p0.y() - A.p0.x() * nzA / nrA, za1 = A.p1.y() - A.p1.x() * nzA / nrA;
+    double found[16][2];
+    int nf = 0;
+    for (int i = 0; i <= 2; ++i)
+      for (int j = 0; j <= 2; ++j)
+        for (double s1 : {1.0, -1.0})
+          for (double s2 : {1.0, -1.0}) {
+            double lam = (za0 + (za1 - za0) * i / 2) * sigma, mu = lo + (hi - lo) * j / 2;
+            if (polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu, s1, s2) > 1e-12) continue;
+            bool dup = false;
+            for (int f = 0; f < nf; ++f) dup = dup || (std::abs(found[f][0] - lam) + std::abs(found[f][1] - mu) < 1e-9);
+            if (dup || nf == 16) continue;
+            found[nf][0] = lam;
+            found[nf][1] = mu;
+            ++nf;
+            emit(lam, mu, false);
+          }
+    return k;
+  }
   double mus[8];
   const double tol = 64 * kEps * sum_abs(Res) * std::pow(std::max({1.0, std::abs(lo), std::abs(hi)}), 4);
   const int nm = poly_roots_in(Res.c, Res.n, lo, hi, tol, mus);
-  int k = 0;
-  for (int i = 0; i < nm && k <= 12; ++i) {
+  for (int i = 0; i < nm; ++i) {
     const double mu = mus[i];
-    double lams[2];
-    int nl = 0;
     const double s = poly_eval(S.c, S.n, mu);
     const double p = poly_eval(P.c, P.n, mu);
     const double e1a = al2, e1b = poly_eval(a1.c, 1, mu), e1c = poly_eval(a0.c, 2, mu);
     if (std::abs(s) > 1e-9 * (std::abs(p) + 1e-300) && std::abs(s) > 1e-14) {
-      lams[nl++] = -p / s;
+      emit(-p / s, mu, true);
     } else {
       // λ is a double root direction of the pencil: solve E1 and keep both.
       const double disc = e1b * e1b - 4 * e1a * e1c;
       if (disc < 0 || e1a == 0) continue;
       const double sq = std::sqrt(disc);
-      lams[nl++] = (-e1b + sq) / (2 * e1a);
-      lams[nl++] = (-e1b - sq) / (2 * e1a);
-    }
-    for (int j = 0; j < nl && k <= 12; ++j) {
-      double lam = lams[j], mu_p = mu;
-      polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu_p);
-      const Vec3 QA = A.o + (lam / sigma) * A.a;
-      const Vec3 QB = B.o + (mu_p / sigma) * B.a;
-      Vec3 d = QB - QA;
-      if (d.norm() > 1e-12 / sigma) {
-        k += pair_feet(A, B, QA, QB, d, x_out + k, y_out + k);
-        continue;
-      }
-      // The axes meet here: lines through the meeting point at both normal angles.
-      const Vec3 Qm = 0.5 * (QA + QB);
-      const double det = 1 - c * c;
-      for (int s1 : {1, -1})
-        for (int g : {1, -1}) {
-          const double ta = s1 * nzA, tb = nzB;  // d . a, d . b (d and -d are one line)
-          const double al = (ta - c * tb) / det, be = (tb - c * ta) / det;
-          const Vec3 base = al * A.a + be * B.a;
-          const double rest = 1 - base.squaredNorm();
-          if (rest < 0) continue;
-          d = base + g * std::sqrt(rest / axb.squaredNorm()) * axb;
-          if (k + 4 > 16) break;
-          k += pair_feet(A, B, Qm, Qm, d, x_out + k, y_out + k);
-          if (rest == 0) break;
-        }
+      emit((-e1b + sq) / (2 * e1a), mu, true);
+      emit((-e1b - sq) / (2 * e1a), mu, true);
     }
   }
   return k;

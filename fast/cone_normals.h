@@ -22,11 +22,15 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
 // Common normal lines of the whole cones of straight patches A and B that meet
 // B's axis within the height range of B's segment's normals (plus a margin): the
 // lines meeting both axes at the cones' normal angles. Writes pairs (x on A's
-// cone, y on B's cone; either NaN where the line meets that cone only at r < 0) and returns their count (at most 16). Flat annuli and
-// parallel axes admit only families of such lines, along which the distance is
-// constant or monotone, so their extremes are at the patch boundaries: those
-// cases return 0 with *degenerate left false. *degenerate is set when the system
-// vanishes identically otherwise.
+// cone, y on B's cone; either NaN where the line meets that cone only at r < 0)
+// and returns their count (at most 16). Roots come from the resultant (a
+// quartic), from the closed form for two cylinders (the common perpendicular of
+// the axes), or, when the resultant vanishes to rounding (nearly parallel
+// axes), from Newton on a grid of starts; all are polished on the unsquared
+// conditions. Flat annuli and exactly parallel axes admit only families of such
+// lines, along which the distance is constant or monotone, so their extremes
+// are at the patch boundaries: those cases return 0. *degenerate is always
+// cleared (kept for the callers' uniform handling).
 int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, bool* degenerate);
 
 // Points where the line through p with direction d meets patch P's whole
