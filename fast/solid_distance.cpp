@@ -195,6 +195,30 @@ struct Solid {
     return s.R * Vec3(p.x(), 0, p.y()) + s.t;
   }
 
+  // A point proven strictly inside this solid (world), if one is found: off
+  // the middle of a leaf arc, to either side, by a small fraction of the
+  // profile's size, checked against the true profile. Solids that share their
+  // surfaces (identical, or stacked flush) are proven to overlap with it.
+  bool interior_point(Vec3* out) const {
+    double size = 0.0;
+    for (const BiarcFit& f : s.tree->fits) size = std::max(size, f.arc[0].start.norm());
+    for (const BiarcNode& n : s.tree->nodes) {
+      if (!n.leaf() || n.fit < 0) continue;
+      const Arc2& a = s.tree->fits[n.fit].arc[0];
+      if (a.length <= 0) continue;
+      const Vec2 m = a.point(0.5 * a.length);
+      const Vec2 t = a.tangent_at(0.5 * a.length);
+      for (double side : {1.0, -1.0}) {
+        const Vec2 q = m + side * 1e-3 * size * Vec2(-t.y(), t.x());
+        if (q.x() < 0 || profile_side(*s.tree, q, 1e-9 * size) != Side::inside) continue;
+        *out = s.R * Vec3(q.x(), 0, q.y()) + s.t;
+        return true;
+      }
+      return false;  // one try: the first leaf's neighbourhood
+    }
+    return false;
+  }
+
   // Side of world point x for this solid (true profile; unknown within margin).
   Side side_of(const Vec3& x, double margin) const {
     const Vec3 d = s.R.transpose() * (x - s.t);
@@ -275,6 +299,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     if (sa == Side::inside) return proven_overlap(x);
     if (sb == Side::inside) return proven_overlap(y);
     containment_unknown = sa == Side::unknown || sb == Side::unknown;
+    // Coincident surfaces leave those points undecided: an interior point of
+    // one solid inside the other still proves the overlap.
+    Vec3 p;
+    if (containment_unknown && A.interior_point(&p) && B.side_of(p, round) == Side::inside) return proven_overlap(p);
+    if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
   }
 
   std::priority_queue<Entry> heap;
