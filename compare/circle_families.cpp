@@ -5,6 +5,8 @@
 // closed form, then moved by a random rigid motion.
 #include "compare/circle_families.h"
 
+#include "compare/random_geometry.h"
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -16,40 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
-
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : gen_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
-  Vec3 unit() {
-    std::normal_distribution<double> g;
-    Vec3 v;
-    do { v = Vec3(g(gen_), g(gen_), g(gen_)); } while (v.squaredNorm() < 1e-12);
-    return v.normalized();
-  }
-  Vec3 box(double s) { return Vec3(uniform(-s, s), uniform(-s, s), uniform(-s, s)); }
-  // A unit vector perpendicular to n.
-  Vec3 perpendicular(const Vec3& n) {
-    Vec3 v;
-    do { v = unit().cross(n); } while (v.squaredNorm() < 1e-6);
-    return v.normalized();
-  }
-
- private:
-  std::mt19937_64 gen_;
-};
-
-struct Motion {
-  Mat3 R = Mat3::Identity();
-  Vec3 t = Vec3::Zero();
-  Circle3 apply(const Circle3& c) const { return {R * c.center + t, R * c.normal, c.radius}; }
-};
-
-Motion random_motion(Rng& rng, double translation) {
-  const Eigen::Quaterniond q(Eigen::Vector4d(rng.uniform(-1, 1), rng.uniform(-1, 1),
-                                             rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized());
-  return {q.toRotationMatrix(), rng.box(translation)};
-}
 
 Circle3 circle(const Vec3& c, const Vec3& n, double r) { return {c, n, r}; }
 

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "compare/random_geometry.h"
 #include "core/circle3.h"
 
 namespace revdist::testing_circles {
@@ -20,39 +21,9 @@ inline std::uint64_t test_seed() {
   return seed;
 }
 
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : gen_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
-  Vec3 unit() {
-    std::normal_distribution<double> g;
-    Vec3 v;
-    do v = Vec3(g(gen_), g(gen_), g(gen_)); while (v.squaredNorm() < 1e-12);
-    return v.normalized();
-  }
-  Vec3 box(double s) { return Vec3(uniform(-s, s), uniform(-s, s), uniform(-s, s)); }
-  Vec3 perpendicular(const Vec3& n) {
-    Vec3 v;
-    do v = unit().cross(n); while (v.squaredNorm() < 1e-6);
-    return v.normalized();
-  }
-  std::mt19937_64& gen() { return gen_; }
-
- private:
-  std::mt19937_64 gen_;
-};
-
-struct Motion {
-  Mat3 R = Mat3::Identity();
-  Vec3 t = Vec3::Zero();
-  Circle3 apply(const Circle3& c) const { return {R * c.center + t, R * c.normal, c.radius}; }
-};
-
-inline Motion random_motion(Rng& rng, double translation) {
-  const Eigen::Quaterniond q(Eigen::Vector4d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1),
-                                             rng.uniform(-1, 1)).normalized());
-  return {q.toRotationMatrix(), rng.box(translation)};
-}
+using revdist::Motion;
+using revdist::Rng;
+using revdist::random_motion;
 
 inline double pair_scale(const Circle3& a, const Circle3& b) {
   return std::max({a.radius, b.radius, (a.center - b.center).norm()});
