@@ -1,6 +1,7 @@
 // Real roots of the small polynomials of the circle kernel (degree <= 8 in
 // t = tan(θ/2)): the binormal polynomial of Appendix A and the fallback quartic.
-// Off the hot path; chosen for robustness over speed.
+// On the hot path of the patch kernel: isolation in the Bernstein basis, with
+// the slower derivative recursion as the fallback.
 #include <algorithm>
 #include <cmath>
 
@@ -31,8 +32,131 @@ double monotone_root(const double* a, const double* da, int n, double lo, double
 
 }  // namespace
 
-int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_abs, double* roots) {
-  // Drop leading coefficients that are exactly zero (a degree drop = roots at infinity).
+// Isolation in the Bernstein basis on [lo, hi] (Descartes' rule of signs on
+// the control polygon, de Casteljau halving), each isolated simple root
+// refined by Newton safeguarded by bisection. Roots of even multiplicity show
+// as intervals whose coefficients come within tol_abs of zero without a sign
+// change: they are halved down to a width of kTiny of [lo, hi] and reported
+// where |p| <= tol_abs, as the derivative-recursion method reports them at
+// critical points. Returns -1 when the work budget runs out (the caller falls
+// back to the derivative recursion).
+static int bernstein_roots(const double* a, int n, double lo, double hi, double tol_abs, double* roots) {
+  // Boxes narrower than this (relative to [lo, hi]) are not halved further: a
+  // multiple root or a cluster is reported at the box's middle, to be polished
+  // by the caller on its unsquared equation; roots closer than two such boxes
+  // are one.
+  constexpr double kTiny = 1e-8;
+  const double w = hi - lo;
+  // q(s) = p(lo + w s): Taylor shift by lo, then scale by w^i.
+  double c[9];
+  for (int i = 0; i <= n; ++i) c[i] = a[i];
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) c[j] += lo * c[j + 1];
+  double wp = 1;
+  for (int i = 0; i <= n; ++i, wp *= w) c[i] *= wp;
+  double dc[8];
+  for (int i = 1; i <= n; ++i) dc[i - 1] = i * c[i];
+  // The shift, the scaling and the change of basis round: the coefficients
+  // bound p only to within a few ulps of the shifted coefficients' size, so
+  // "stays away from 0" needs that much more than tol_abs.
+  double csum = 0;
+  for (int i = 0; i <= n; ++i) csum += std::abs(c[i]);
+  const double tol_b = tol_abs + 32 * (n + 1) * kEps * csum;
+  // Power to Bernstein: b_k = sum_{i <= k} C(k, i) / C(n, i) c_i.
+  static const double binom[9][9] = {
+      {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
+      {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}};
+  struct Box {
+    double b[9];
+    double s0, s1;
+  };
+  Box stack[128];
+  int top = 0;
+  Box& first = stack[top++];
+  for (int k = 0; k <= n; ++k) {
+    double v = 0;
+    for (int i = 0; i <= k; ++i) v += binom[k][i] / binom[n][i] * c[i];
+    first.b[k] = v;
+  }
+  first.s0 = 0;
+  first.s1 = 1;
+  int nr = 0, work = 0;
+  auto q = [&](double x) { return poly_eval(c, n, x); };
+  while (top > 0) {
+    if (++work > 400 || nr > 16) return -1;
+    const Box box = stack[--top];
+    const double* b = box.b;
+    if (b[0] == 0) roots[nr++] = lo + w * box.s0;
+    int v = 0, last = 0;
+    double mn = std::abs(b[0]);
+    for (int k = 0; k <= n; ++k) {
+      mn = std::min(mn, std::abs(b[k]));
+      if (b[k] == 0) continue;
+      const int sg = b[k] > 0 ? 1 : -1;
+      if (last != 0 && sg != last) ++v;
+      last = sg;
+    }
+    const double width = box.s1 - box.s0;
+    const bool tiny = width < kTiny;
+    if (v == 0) {
+      if (mn > tol_b) continue;  // no root, and p stays away from 0 here
+      if (tiny) {
+        const double m = lo + w * 0.5 * (box.s0 + box.s1);
+        if (std::abs(poly_eval(a, n, m)) <= tol_abs) roots[nr++] = m;
+        continue;
+      }
+    } else if (v == 1 && b[0] != 0 && b[n] != 0) {
+      // Exactly one simple root inside: Newton safeguarded by the bracket.
+      double s0 = box.s0, s1 = box.s1, x = 0.5 * (s0 + s1);
+      const bool neg0 = b[0] < 0;
+      for (int it = 0; it < 100; ++it) {
+        const double f = q(x);
+        if (f == 0) break;
+        if ((f < 0) == neg0) s0 = x; else s1 = x;
+        const double d = poly_eval(dc, n - 1, x);
+        double xn = d != 0 ? x - f / d : 0.5 * (s0 + s1);
+        if (!(xn > s0 && xn < s1)) xn = 0.5 * (s0 + s1);
+        if (std::abs(xn - x) <= 4 * kEps * std::max(1.0, std::abs(x)) || s1 - s0 <= 4 * kEps) {
+          x = xn;
+          break;
+        }
+        x = xn;
+      }
+      roots[nr++] = lo + w * x;
+      continue;
+    } else if (tiny) {
+      roots[nr++] = lo + w * 0.5 * (box.s0 + box.s1);  // a cluster or multiple root
+      continue;
+    }
+    if (top + 2 > 128) return -1;
+    // de Casteljau halving.
+    Box left, right;
+    double t[9];
+    for (int k = 0; k <= n; ++k) t[k] = b[k];
+    for (int r = 0; r <= n; ++r) {
+      left.b[r] = t[0];
+      right.b[n - r] = t[n - r];
+      for (int k = 0; k < n - r; ++k) t[k] = 0.5 * (t[k] + t[k + 1]);
+    }
+    const double sm = 0.5 * (box.s0 + box.s1);
+    left.s0 = box.s0;
+    left.s1 = sm;
+    right.s0 = sm;
+    right.s1 = box.s1;
+    stack[top++] = right;
+    stack[top++] = left;
+  }
+  if (q(1.0) == 0) roots[nr++] = hi;
+  std::sort(roots, roots + nr);
+  nr = static_cast<int>(
+      std::unique(roots, roots + nr, [&](double x, double y) { return std::abs(x - y) <= 2 * kTiny * std::abs(w); }) -
+      roots);
+  return nr;
+}
+
+// Isolation by the derivative recursion: the critical points split [lo, hi]
+// into monotone pieces. Slower; the fallback of bernstein_roots.
+static int recursive_roots(const double* a_in, int n, double lo, double hi, double tol_abs, double* roots) {
   while (n > 0 && a_in[n] == 0) --n;
   if (n == 0) return 0;
   double a[9], da[8];
@@ -43,7 +167,7 @@ int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_ab
   double crit[10];
   int nc = 0;
   // A touching zero of p' does not break monotonicity: tolerance 0 there.
-  if (n >= 2) nc = poly_roots_in(da, n - 1, lo, hi, 0.0, crit);
+  if (n >= 2) nc = recursive_roots(da, n - 1, lo, hi, 0.0, crit);
   double brk[12];
   int nb = 0;
   brk[nb++] = lo;
@@ -69,6 +193,19 @@ int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_ab
   std::sort(roots, roots + nr);
   nr = static_cast<int>(std::unique(roots, roots + nr) - roots);
   return nr;
+}
+
+int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_abs, double* roots) {
+  // Drop leading coefficients that are exactly zero (a degree drop = roots at infinity).
+  while (n > 0 && a_in[n] == 0) --n;
+  if (n == 0) return 0;
+  double buf[20];
+  const int nb = bernstein_roots(a_in, n, lo, hi, tol_abs, buf);
+  if (nb >= 0 && nb <= n) {
+    std::copy(buf, buf + nb, roots);
+    return nb;
+  }
+  return recursive_roots(a_in, n, lo, hi, tol_abs, roots);
 }
 
 int trig_poly_roots(const double* a, int n, double* th) {

@@ -176,14 +176,26 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
   const Poly& Qa = k.Qa;
   const double sigma = k.sigma;
   const double nr2 = K.n.x() * K.n.x(), nz2 = K.n.y() * K.n.y();
-  const Poly F = axpy(nr2, mul(Q1, Q1), -4 * nz2, mul(mul(k.Zp, k.Zp), Q));
-  // Rounding of the products: a few ε of the absolute-value products.
-  const Poly Fa = axpy(nr2, mul(k.Q1a, k.Q1a), 4 * nz2, mul(mul_abs(k.Zp, k.Zp), Qa));
+  // h' = n_r q' / (2 rho) + n_z z'. A flat annulus (n_r = 0) needs only z' = 0
+  // and a cylinder (n_z = 0) only q' = 0: solving those directly avoids the
+  // squared form, whose roots would all be double there.
+  Poly F, Fa;
+  if (K.n.x() == 0) {
+    F = k.Zp;
+    Fa = mul_abs(k.Zp, Poly{{1}, 0});
+  } else if (K.n.y() == 0) {
+    F = Q1;
+    Fa = k.Q1a;
+  } else {
+    F = axpy(nr2, mul(Q1, Q1), -4 * nz2, mul(mul(k.Zp, k.Zp), Q));
+    // Rounding of the products: a few ε of the absolute-value products.
+    Fa = axpy(nr2, mul(k.Q1a, k.Q1a), 4 * nz2, mul(mul_abs(k.Zp, k.Zp), Qa));
+  }
   auto point = [&](double t) { return k.point(t, C); };
   double th[16];  // two root charts of a degree-8 polynomial
   int n = 0;
   if (max_abs(F) > 256 * kEps * max_abs(Fa)) {
-    n = trig_poly_roots(F.c, 8, th);
+    n = trig_poly_roots(F.c, F.n, th);
     for (int i = 0; i < n; ++i) out[i] = point(polish_circle_cone(C, k.f, K, th[i]));
     return n;
   }
