@@ -85,16 +85,8 @@ bool polish_branch(const PairCoeffs& k, double sigma, double* th) {
 // Points where b crosses a's axis: minima of ρ^2 (roots of Qp, a quartic in t)
 // where ρ vanishes to rounding.
 int axis_crossings(const PairCoeffs& k, double* th_out) {
-  double X[3], Y[3], Xd[3], Yd[3], q[5], q2[5];
-  trig1_to_t(k.x0, k.x1, k.x2, X);
-  trig1_to_t(k.y0, k.y1, k.y2, Y);
-  trig1_to_t(0, k.x2, -k.x1, Xd);
-  trig1_to_t(0, k.y2, -k.y1, Yd);
-  poly_mul(X, 2, Xd, 2, q);
-  poly_mul(Y, 2, Yd, 2, q2);
-  for (int i = 0; i <= 4; ++i) q[i] += q2[i];
-  double th[12];
-  const int n = trig_poly_roots(q, 4, th);
+  double th[16];
+  const int n = rho2_critical_angles(k, th);
   int m = 0;
   for (int i = 0; i < n; ++i) {
     // Newton on Qp = (ρ^2)'/2 polishes the minimum of ρ^2.

@@ -152,16 +152,8 @@ double torus_quadratic(const PairCoeffs& r, double m, double* c2, double* c3, do
 // either f ≡ m or the far distance ≡ m, and there f = m - 4Rρ is least where ρ^2
 // is greatest. The candidates are the critical points of ρ^2 = X^2 + Y^2.
 bool fallback_rho_extrema(const PairCoeffs& k, Min* cur) {
-  double X[3], Y[3], Xd[3], Yd[3], q[5], q2[5];
-  trig1_to_t(k.x0, k.x1, k.x2, X);
-  trig1_to_t(k.y0, k.y1, k.y2, Y);
-  trig1_to_t(0, k.x2, -k.x1, Xd);  // X' = x2 cosθ - x1 sinθ
-  trig1_to_t(0, k.y2, -k.y1, Yd);
-  poly_mul(X, 2, Xd, 2, q);
-  poly_mul(Y, 2, Yd, 2, q2);
-  for (int i = 0; i <= 4; ++i) q[i] += q2[i];
   double th[16];
-  const int n = trig_poly_roots(q, 4, th);
+  const int n = rho2_critical_angles(k, th);
   bool improved = false;
   for (int i = 0; i < n; ++i) {
     if (sq_dist(k, std::cos(th[i]), std::sin(th[i])) >= cur->f) continue;
@@ -201,13 +193,7 @@ bool near_contact_starts(const PairCoeffs& k, Min* cur) {
   u[2] -= 2 * R2;
   u[4] -= R2;
   n += trig_poly_roots(u, 4, th + n);
-  double Xd[3], Yd[3], q[5];
-  trig1_to_t(0, k.x2, -k.x1, Xd);
-  trig1_to_t(0, k.y2, -k.y1, Yd);
-  poly_mul(X, 2, Xd, 2, q);
-  poly_mul(Y, 2, Yd, 2, t1);
-  for (int i = 0; i <= 4; ++i) q[i] += t1[i];
-  n += trig_poly_roots(q, 4, th + n);
+  n += rho2_critical_angles(k, th + n);
   bool improved = false;
   for (int i = 0; i < n; ++i) {
     const Min m = descend(k, th[i]);

@@ -177,6 +177,20 @@ int poly_roots_in(const double* a, int n, double lo, double hi, double tol_abs, 
 // so roots near the seam may appear twice. th must hold 2n entries.
 int trig_poly_roots(const double* a, int n, double* th);
 
+// Angles where ρ^2 = X^2 + Y^2 of circle p in q's frame is critical:
+// roots of (ρ^2)'/2 = X X' + Y Y', a quartic in t (at most 8 angles: two charts).
+inline int rho2_critical_angles(const PairCoeffs& k, double* th) {
+  double X[3], Y[3], Xd[3], Yd[3], q[5], q2[5];
+  trig1_to_t(k.x0, k.x1, k.x2, X);
+  trig1_to_t(k.y0, k.y1, k.y2, Y);
+  trig1_to_t(0, k.x2, -k.x1, Xd);  // X' = x2 cosθ - x1 sinθ
+  trig1_to_t(0, k.y2, -k.y1, Yd);
+  poly_mul(X, 2, Xd, 2, q);
+  poly_mul(Y, 2, Yd, 2, q2);
+  for (int i = 0; i <= 4; ++i) q[i] += q2[i];
+  return trig_poly_roots(q, 4, th);
+}
+
 inline double wrap_pi(double x) {
   while (x > kPi) x -= 2 * kPi;
   while (x <= -kPi) x += 2 * kPi;
