@@ -56,6 +56,7 @@ class FastEngine {
               {"stats", {{"node_pairs", r.stats.node_pairs},
                          {"leaf_pairs", r.stats.leaf_pairs},
                          {"patch_pairs", r.stats.patch_pairs},
+                         {"quick_pairs", r.stats.quick_pairs},
                          {"refined_parts", r.stats.refined},
                          {"time_us", us}}}};
     if (!r.converged) a.json["reason"] = r.reason;

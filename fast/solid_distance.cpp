@@ -53,14 +53,12 @@ struct Solid {
   std::vector<Part> parts;
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds (as the tree builder's)
-  double max_eps = 0.0;
 
   explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()) {
     double scale = 0.0;
     for (const Piece& p : ps.profile->pieces)
       for (const Vec2& q : p.points) scale = std::max({scale, std::abs(q.x()), std::abs(q.y())});
     slack = 64.0 * DBL_EPSILON * scale;
-    for (const BiarcFit& f : ps.tree->fits) max_eps = std::max(max_eps, f.eps);
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
   }
