@@ -120,39 +120,20 @@ struct Builder {
 
   void build_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
                    const SpanEnds& e, int depth) {
-    const LensBound lens = lens_bound(e);
     const double um = 0.5 * (u0 + u1);
     SpanEnds left, right;
-    left.p0 = e.p0;
-    left.t0 = e.t0;
-    left.k0 = e.k0;
-    left.p1 = piece_tangent(piece, um, +1, &left.t1, &left.k1);
-    right.p0 = left.p1;
-    right.t0 = left.t1;
-    right.k0 = left.k1;
-    right.p1 = e.p1;
-    right.t1 = e.t1;
-    right.k1 = e.k1;
-
-    const Biarc b = fit_curve_biarc(piece, u0, u1, e, left.p1);
-    BiarcFit f;
-    f.arc[0] = b.arc[0];
-    f.arc[1] = b.arc[1];
-    f.eps = lens.hypotheses_ok ? lens.width + slack : std::numeric_limits<double>::infinity();
-    f.u0 = u0;
-    f.u1 = u1;
-    f.piece = piece_index;
-    f.kind = SpanKind::curve;
+    split_span(piece, u0, u1, e, &left, &right);
+    Capsule cap;
+    BiarcFit f = fit_curve_span(piece, piece_index, u0, u1, e, left.p1, slack, &cap);
     f.depth = static_cast<std::uint8_t>(depth);
     tree.nodes[node].fit = add_fit(f);
+    const bool proven = f.eps < std::numeric_limits<double>::infinity();
 
-    const bool leaf = (lens.hypotheses_ok && f.eps <= eps) || depth >= kMaxDepth || !(u0 < um && um < u1);
+    const bool leaf = (proven && f.eps <= eps) || depth >= kMaxDepth || !(u0 < um && um < u1);
     if (leaf) {
       tree.nodes[node].child = -1;
-      if (lens.hypotheses_ok) {
-        Capsule c = lens_capsule(e, lens);
-        c.radius += slack;
-        set_capsule(node, c);
+      if (proven) {
+        set_capsule(node, cap);
         if (f.eps > eps) ++st.depth_limited;
       } else {
         // Nothing is proven about this part: a capsule that bounds nothing.
@@ -166,9 +147,7 @@ struct Builder {
     tree.nodes[node].child = c;
     build_curve(c, piece, piece_index, u0, um, left, depth + 1);
     build_curve(c + 1, piece, piece_index, um, u1, right, depth + 1);
-    if (lens.hypotheses_ok) {
-      Capsule cap = lens_capsule(e, lens);
-      cap.radius += slack;
+    if (proven) {
       set_capsule(node, cap);
     } else {
       set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
@@ -201,6 +180,32 @@ struct Builder {
 
 }  // namespace
 
+void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right) {
+  *left = e;
+  *right = e;
+  left->p1 = piece_tangent(piece, 0.5 * (u0 + u1), +1, &left->t1, &left->k1);
+  right->p0 = left->p1;
+  right->t0 = left->t1;
+  right->k0 = left->k1;
+}
+
+BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0, double u1, const SpanEnds& e,
+                        const Vec2& mid, double slack, Capsule* capsule) {
+  const LensBound lens = lens_bound(e);
+  const Biarc b = fit_curve_biarc(piece, u0, u1, e, mid);
+  BiarcFit f;
+  f.arc[0] = b.arc[0];
+  f.arc[1] = b.arc[1];
+  f.eps = lens.hypotheses_ok ? lens.width + slack : std::numeric_limits<double>::infinity();
+  f.u0 = u0;
+  f.u1 = u1;
+  f.piece = piece_index;
+  f.kind = SpanKind::curve;
+  *capsule = lens_capsule(e, lens);
+  capsule->radius = lens.hypotheses_ok ? capsule->radius + slack : std::numeric_limits<double>::infinity();
+  return f;
+}
+
 void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats) {
   tree.nodes.clear();
   tree.fits.clear();
@@ -228,6 +233,7 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
     b.build_upper(0, 0, tree.spirals.size());
   }
   tree.max_error = b.st.max_error;
+  tree.slack = b.slack;
   if (stats) {
     *stats = b.st;
     stats->pieces = static_cast<int>(profile.pieces.size());

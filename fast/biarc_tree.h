@@ -23,6 +23,7 @@
 
 #include "core/arc2.h"
 #include "core/profile.h"
+#include "fast/biarc_fit.h"
 #include "fast/spiral_split.h"
 
 namespace revdist {
@@ -53,6 +54,7 @@ struct BiarcTree {
   std::vector<SpiralSpan> spirals;  // the spirals the tree was built over, in chain order
   double eps = 0.0;        // requested bound
   double max_error = 0.0;  // max eps over the leaves (claimed, proven by the lens bound)
+  double slack = 0.0;      // rounding allowance added to every proven bound (64 ulp of the profile's size)
 
   // Bytes of the tree proper (nodes and fits); the spiral list is build input.
   std::size_t bytes() const { return nodes.size() * sizeof(BiarcNode) + fits.size() * sizeof(BiarcFit); }
@@ -69,6 +71,16 @@ struct BuildStats {
   int unproven = 0;        // leaves whose spiral hypotheses failed (eps = inf); 0 expected
   int depth_limited = 0;   // leaves that hit the depth limit before reaching eps
 };
+
+// Hermite data of the two halves of a span at its mid parameter, the split of
+// Algorithm 1 (also used to refine leaves during a distance query).
+void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right);
+
+// The biarc fit of curve span piece[u0, u1] (end data e, `mid` the curve's
+// point at the mid parameter), its proven eps (lens width + slack; +inf when
+// the spiral hypotheses fail) and its capsule (radius +inf then).
+BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0, double u1, const SpanEnds& e,
+                        const Vec2& mid, double slack, Capsule* capsule);
 
 // Builds the tree of `profile` with requested error bound eps > 0.
 BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats = nullptr);

@@ -52,13 +52,9 @@ struct Solid {
   const PosedSolid& s;
   std::vector<Part> parts;
   Vec3 axis;
-  double slack;  // rounding allowance of refitted bounds (as the tree builder's)
+  double slack;  // rounding allowance of refitted bounds: the tree builder's
 
-  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()) {
-    double scale = 0.0;
-    for (const Piece& p : ps.profile->pieces)
-      for (const Vec2& q : p.points) scale = std::max({scale, std::abs(q.x()), std::abs(q.y())});
-    slack = 64.0 * DBL_EPSILON * scale;
+  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
   }
@@ -116,11 +112,8 @@ struct Solid {
     SpanEnds e;
     e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
     e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);
-    SpanEnds left = e, right = e;
-    left.p1 = piece_tangent(piece, um, +1, &left.t1, &left.k1);
-    right.p0 = left.p1;
-    right.t0 = left.t1;
-    right.k0 = left.k1;
+    SpanEnds left, right;
+    split_span(piece, u0, u1, e, &left, &right);
     Part* out[2] = {c0, c1};
     const SpanEnds* ends[2] = {&left, &right};
     const double us[3] = {u0, um, u1};
@@ -133,14 +126,10 @@ struct Solid {
       f = p.fit;
       f.u0 = us[h];
       f.u1 = us[h + 1];
-      const LensBound lens = lens_bound(*ends[h]);
+      Capsule cap;
       if (p.fit.kind == SpanKind::curve) {
         const Vec2 mid = piece_point(piece, 0.5 * (f.u0 + f.u1));
-        const Biarc b = fit_curve_biarc(piece, f.u0, f.u1, *ends[h], mid);
-        f.arc[0] = b.arc[0];
-        f.arc[1] = b.arc[1];
-        f.arcs = 2;
-        f.eps = lens.hypotheses_ok ? lens.width + slack : kInf;
+        f = fit_curve_span(piece, p.fit.piece, f.u0, f.u1, *ends[h], mid, slack, &cap);
       } else {
         const Arc2& a = p.fit.arc[0];
         const double half = 0.5 * a.length;
@@ -148,11 +137,11 @@ struct Solid {
                           : Arc2{a.point(half), a.tangent_at(half), a.curvature, half};
         f.arc[1] = Arc2{f.arc[0].end(), f.arc[0].end_tangent(), a.curvature, 0.0};
         f.arcs = 1;
+        cap = lens_capsule(*ends[h], lens_bound(*ends[h]));
+        cap.radius += slack;
       }
-      Capsule cap = lens_capsule(*ends[h], lens);
-      if (!lens.hypotheses_ok) cap.radius = kInf;
       c.disk_c = 0.5 * (cap.a + cap.b);
-      c.disk_r = 0.5 * (cap.b - cap.a).norm() + cap.radius + slack;
+      c.disk_r = 0.5 * (cap.b - cap.a).norm() + cap.radius;
     }
   }
 
