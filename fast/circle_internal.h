@@ -31,15 +31,20 @@ inline void plane_basis(const Vec3& n, Vec3* u, Vec3* v) {
   *v = n.cross(*u);
 }
 
-// The power of two that brings max(radii, |C_a - C_b|) into [1/2, 1): lengths
-// multiplied by it are exact, so the kernel is bit-for-bit invariant under scaling
-// by powers of two and its tolerances are plain multiples of ε.
-inline double circle_pair_sigma(const Circle3& a, const Circle3& b) {
-  const double s = std::max({a.radius, b.radius, (a.center - b.center).cwiseAbs().maxCoeff()});
+// The power of two that brings s into [1/2, 1) when multiplied (1 for s <= 0
+// or not finite): lengths multiplied by it are exact.
+inline double pow2_inverse(double s) {
   if (!(s > 0) || !std::isfinite(s)) return 1.0;
   int e;
   std::frexp(s, &e);
   return std::ldexp(1.0, -e);
+}
+
+// The power of two for max(radii, |C_a - C_b|): the kernel is then bit-for-bit
+// invariant under scaling by powers of two and its tolerances are plain
+// multiples of ε.
+inline double circle_pair_sigma(const Circle3& a, const Circle3& b) {
+  return pow2_inverse(std::max({a.radius, b.radius, (a.center - b.center).cwiseAbs().maxCoeff()}));
 }
 
 // A circle prepared for the kernel: unit normal and in-plane basis.

@@ -26,14 +26,6 @@ namespace {
 
 using namespace circle_detail;
 
-// Power of two near 1/s, so scaled lengths are exact and near 1.
-double pow2_inverse(double s) {
-  if (!(s > 0) || !std::isfinite(s)) return 1.0;
-  int e;
-  std::frexp(s, &e);
-  return std::ldexp(1.0, -e);
-}
-
 // Small dense polynomials (coefficient i of t^i).
 struct Poly {
   double c[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
