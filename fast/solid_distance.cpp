@@ -269,6 +269,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   };
 
   double ub = kInf;
+  // The queue stops below cut(): the bracket then meets tol or rel_tol.
+  const double rel = std::max(opt.rel_tol, 0.0);
+  // Stop when lower >= ub - tol or lower >= ub / (1 + rel_tol): either tolerance met.
+  auto cut = [&] { return rel > 0 ? std::min(ub - opt.tol, ub / (1.0 + rel)) : ub - opt.tol; };
+  const bool threshold = std::isfinite(opt.threshold);
   auto offer = [&](const Vec3& x, const Vec3& y) {
     const double d = (x - y).norm();
     if (d < ub) {
@@ -299,8 +304,8 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   bool unresolved = false;
 
   auto push_pair = [&](std::int32_t ia, std::int32_t ib) {
-    const double lb = pair_bound(A, A.parts[ia], B, B.parts[ib], ub - opt.tol);
-    if (lb >= ub - opt.tol) settled_lb = std::min(settled_lb, lb);
+    const double lb = pair_bound(A, A.parts[ia], B, B.parts[ib], cut());
+    if (lb >= cut()) settled_lb = std::min(settled_lb, lb);
     else heap.push({lb, ia, ib});
   };
   // Replaces pair e by the pairs of one side's children.
@@ -318,7 +323,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
 
   while (!heap.empty()) {
     const Entry e = heap.top();
-    if (e.lb >= ub - opt.tol) break;  // every remaining pair is at least e.lb away
+    if (e.lb >= cut()) break;  // every remaining pair is at least e.lb away
+    if (threshold && (ub <= opt.threshold || std::min(e.lb, settled_lb) > opt.threshold)) {
+      res.decided = true;
+      break;
+    }
     heap.pop();
     if (++st.node_pairs > opt.max_node_pairs) {
       res.reason = "work budget exhausted";
@@ -348,7 +357,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         // The cheap look first: most pairs end here.
         const PatchQuick quick = patch_pair_quick(P, Q);
         const double disk = quick.lower - fa.eps - fb.eps - round;
-        if (disk >= ub - opt.tol) {
+        if (disk >= cut()) {
           ++st.quick_pairs;
           lb_pair = std::min(lb_pair, disk);
           continue;
@@ -362,7 +371,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, ub - opt.tol + fa.eps + fb.eps + round);
+        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round);
         if (r.found) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
           const double d = std::min(r.found ? r.upper : kInf, r.lower_skipped);
@@ -382,7 +391,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         }
       }
     }
-    if (lb_pair >= ub - opt.tol) {
+    if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;
     }
@@ -418,8 +427,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   res.lower = lb;
   res.upper = ub;
   res.distance = 0.5 * (lb + ub);
-  res.converged = !unresolved && ub - lb <= opt.tol;
-  if (!res.converged && res.reason.empty()) res.reason = "bracket wider than tol";
+  res.converged = !unresolved && (ub - lb <= opt.tol || ub - lb <= rel * lb);
+  if (threshold) res.decided = ub <= opt.threshold || lb > opt.threshold;
+  if (!res.converged && res.reason.empty())
+    res.reason = res.decided ? "threshold decided before the bracket met tol" : "bracket wider than tol";
   return res;
 }
 

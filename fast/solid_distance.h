@@ -5,6 +5,7 @@
 // points on the true (input) surfaces, and local refinement of the fits near
 // the closest pair when the tolerance asks for more than the trees give.
 #pragma once
+#include <limits>
 #include <string>
 
 #include "core/profile.h"
@@ -23,7 +24,14 @@ struct PosedSolid {
 };
 
 struct DistanceOptions {
-  double tol = 1e-6;            // stop when upper - lower <= tol
+  double tol = 1e-6;            // stop when upper - lower <= tol (absolute length)
+  // Also stop when upper - lower <= rel_tol * lower (digits rather than units);
+  // 0 disables. Converged means either tolerance is met.
+  double rel_tol = 0.0;
+  // Threshold predicate ("closer than threshold?"): when finite, the query
+  // stops as soon as upper <= threshold (closer) or lower > threshold (not),
+  // without narrowing the bracket further; SolidDistanceResult::decided says so.
+  double threshold = std::numeric_limits<double>::quiet_NaN();
   int max_refine = 24;          // subdivision levels allowed below a tree leaf
   long max_node_pairs = 4000000;  // work budget; beyond it the result says converged = false
 };
@@ -39,7 +47,8 @@ struct DistanceStats {
 struct SolidDistanceResult {
   double lower = 0.0, upper = 0.0, distance = 0.0;
   bool overlap = false;    // proven: the solids share a point (then lower = upper = 0)
-  bool converged = false;  // upper - lower <= tol
+  bool converged = false;  // upper - lower <= tol (or <= rel_tol * lower)
+  bool decided = false;    // a threshold query was settled (lower > threshold or upper <= threshold)
   std::string reason;      // why not converged
   Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  // on the true surfaces (world)
   DistanceStats stats;
