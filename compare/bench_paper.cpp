@@ -13,15 +13,13 @@
 
 #include <Eigen/Geometry>
 
+#include "compare/mesh_fcl.h"
 #include "compare/motion.h"
 #include "core/case_io.h"
 #include "core/input_error.h"
 #include "exact/solid_distance_exact.h"
 #include "fast/biarc_tree.h"
 #include "fast/solid_distance.h"
-#ifdef REVDIST_BENCH_HAVE_MESH
-#include "compare/mesh_fcl.h"
-#endif
 
 namespace revdist {
 
@@ -183,7 +181,6 @@ void fold_accuracy(BenchRecord& r, const std::vector<Certified>& exact, const st
   }
 }
 
-#ifdef REVDIST_BENCH_HAVE_MESH
 struct MeshSide {
   std::shared_ptr<const FclMesh> mesh;
   long triangles = 0, bv_nodes = 0, bytes = 0;
@@ -200,7 +197,6 @@ MeshSide build_mesh(const Profile& p, double eps) {
   m.bytes = fcl_mesh_bytes(*m.mesh);
   return m;
 }
-#endif
 
 class Runner {
  public:
@@ -306,9 +302,7 @@ class Runner {
     const std::string el = eps_label(eps);
     // Tables 1-2 and Figure 9: trees, meshes, build times.
     std::vector<std::unique_ptr<Built>> trees;
-#ifdef REVDIST_BENCH_HAVE_MESH
     std::vector<MeshSide> meshes;
-#endif
     for (const auto& s : in_.statics) {
       say("build " + s.name + " eps " + el);
       trees.push_back(build(profile_at(s.def, 0.0), eps));
@@ -320,7 +314,6 @@ class Runner {
       r.median_us = percentile(us, 0.5), r.p90_us = percentile(us, 0.9), r.mean_us = mean(us);
       r.nodes = t.stats.nodes, r.leaves = t.stats.leaves, r.bytes = static_cast<long>(t.stats.bytes);
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
-#ifdef REVDIST_BENCH_HAVE_MESH
       if (o_.fcl) {
         say("mesh " + s.name + " eps " + el);
         meshes.push_back(build_mesh(t.profile, eps));
@@ -329,7 +322,6 @@ class Runner {
         r.ratio = m.build_us / r.median_us;
         r.fcl_triangles = m.triangles, r.fcl_bv_nodes = m.bv_nodes, r.fcl_bytes = m.bytes;
       }
-#endif
       records.push_back(r);
     }
     // Figure 9's last bar and Figure 8: the deformable model rebuilt every frame.
@@ -347,7 +339,6 @@ class Runner {
         r.bytes = std::max<long>(r.bytes, static_cast<long>(f->stats.bytes));
       }
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
-#ifdef REVDIST_BENCH_HAVE_MESH
       if (o_.fcl) {
         // One mesh rebuild of the first frame: what FCL would pay per frame.
         const MeshSide ms = build_mesh(m.frames[0]->profile, eps);
@@ -355,7 +346,6 @@ class Runner {
         r.ratio = ms.build_us / r.mean_us;
         r.fcl_triangles = ms.triangles, r.fcl_bv_nodes = ms.bv_nodes, r.fcl_bytes = ms.bytes;
       }
-#endif
       records.push_back(r);
       for (PairMotion& pm : deforms_) {
         if (pm.b != d) continue;
@@ -394,7 +384,6 @@ class Runner {
       r.bytes = static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
       std::vector<double> fcl_sample;
-#ifdef REVDIST_BENCH_HAVE_MESH
       if (o_.fcl) {
         const MeshSide& ma = meshes[pm.a];
         const MeshSide& mb = meshes[pm.b];
@@ -413,7 +402,6 @@ class Runner {
         r.fcl_triangles = ma.triangles + mb.triangles, r.fcl_bv_nodes = ma.bv_nodes + mb.bv_nodes;
         r.fcl_bytes = ma.bytes + mb.bytes;
       }
-#endif
       fold_accuracy(r, pm.exact, q.sample, qp.sample, fcl_sample);
       records.push_back(r);
       merge(all, q), merge(all_proven, qp);
