@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <cstdio>
-#include <cstdlib>
 
 namespace revdist {
 
@@ -47,9 +45,6 @@ struct Approach {
     B.t = centre_a + s * u - offset_b;
     ++evaluations;
     const SolidDistanceResult r = solid_distance(A, B, options);
-    if (std::getenv("REVDIST_MOTION_DEBUG"))
-      std::fprintf(stderr, "gap s=%.9g lower=%.9g upper=%.9g overlap=%d conv=%d np=%ld pp=%ld\n", s, r.lower, r.upper,
-                   r.overlap, r.converged, r.stats.node_pairs, r.stats.patch_pairs);
     if (r.overlap || (!r.converged && r.lower <= 0)) return -1.0;
     return r.converged ? r.distance : r.upper;
   }
