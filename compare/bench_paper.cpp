@@ -105,6 +105,7 @@ std::vector<double> time_rebuilds(const Profile& p, double eps, int reps) {
 
 struct QueryTimes {
   std::vector<double> us;
+  std::vector<double> overlap_us;  // frames planned to overlap
   std::vector<SolidDistanceResult> sample;  // results at the certified sample frames
   double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
   int overlaps = 0, unconverged = 0;
@@ -117,6 +118,8 @@ void set_counters(BenchRecord& r, const QueryTimes& q) {
   r.node_pairs = q.node_pairs / n, r.leaf_pairs = q.leaf_pairs / n, r.patch_pairs = q.patch_pairs / n;
   r.quick_pairs = q.quick_pairs / n, r.refined = q.refined / n;
   r.overlaps = q.overlaps, r.unconverged = q.unconverged;
+  r.planned_overlaps = static_cast<int>(q.overlap_us.size());
+  r.overlap_median_us = percentile(q.overlap_us, 0.5), r.overlap_p99_us = percentile(q.overlap_us, 0.99);
 }
 
 // Times solid_distance on every frame, one call per frame, same poses as FCL.
@@ -132,6 +135,7 @@ QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::funct
     const double c0 = thread_cpu_us();
     const SolidDistanceResult r = solid_distance(A, B, o);
     q.us.push_back(thread_cpu_us() - c0);
+    if (frames[j].target < 0) q.overlap_us.push_back(q.us.back());
     q.node_pairs += r.stats.node_pairs, q.leaf_pairs += r.stats.leaf_pairs, q.patch_pairs += r.stats.patch_pairs;
     q.quick_pairs += r.stats.quick_pairs, q.refined += r.stats.refined;
     q.overlaps += r.overlap, q.unconverged += !r.converged;
@@ -207,7 +211,11 @@ class Runner {
     BenchResult out;
     out.options = o_;
     out.source = in_.source;
-    setup_eps_ = *std::min_element(o_.eps.begin(), o_.eps.end());
+    fine_eps_ = *std::min_element(o_.eps.begin(), o_.eps.end());
+    // The motion setup needs the gap to ~1e-3 of the size: finer trees only cost time.
+    double extent = INFINITY;
+    for (const auto& st : in_.statics) extent = std::min(extent, profile_extent(profile_at(st.def, 0.0)));
+    setup_eps_ = std::max(fine_eps_, 1e-4 * extent);
     make_motions();
     for (double eps : o_.eps) run_eps(eps, out.records);
     out.cpu_s = (thread_cpu_us() - c0) * 1e-6;
@@ -274,7 +282,7 @@ class Runner {
   void certify(PairMotion& pm, const std::function<Profile(int)>& pa, const std::function<Profile(int)>& pb) {
     pm.sample = sample_frames(static_cast<int>(pm.frames.size()), o_.exact_frames);
     ExactSolidOptions xo;
-    xo.absolute_width = 0.1 * setup_eps_;  // fine enough to see each side's error at the finest eps
+    xo.absolute_width = 0.1 * fine_eps_;  // fine enough to see each side's error at the finest eps
     xo.max_boxes = o_.exact_max_boxes;
     for (int j : pm.sample) {
       say("certified reference: " + pm.name + " frame " + std::to_string(j));
@@ -425,6 +433,7 @@ class Runner {
 
   static void merge(QueryTimes& into, const QueryTimes& q) {
     into.us.insert(into.us.end(), q.us.begin(), q.us.end());
+    into.overlap_us.insert(into.overlap_us.end(), q.overlap_us.begin(), q.overlap_us.end());
     into.node_pairs += q.node_pairs, into.leaf_pairs += q.leaf_pairs, into.patch_pairs += q.patch_pairs;
     into.quick_pairs += q.quick_pairs, into.refined += q.refined;
     into.overlaps += q.overlaps, into.unconverged += q.unconverged;
@@ -432,7 +441,7 @@ class Runner {
 
   const BenchInput& in_;
   const BenchOptions& o_;
-  double setup_eps_ = 1e-5;
+  double fine_eps_ = 1e-5, setup_eps_ = 1e-5;
   std::vector<PairMotion> motions_, deforms_;
 };
 

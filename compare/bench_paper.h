@@ -63,6 +63,10 @@ struct BenchRecord {
   // Work counters, means per revdist query.
   double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
   int overlaps = 0;        // frames revdist proved overlapping
+  // Frames planned to overlap slightly (negative gap): how many, and revdist's
+  // time on them (the "overlap proven in <= 50 us for 99 %").
+  int planned_overlaps = 0;
+  double overlap_median_us = 0.0, overlap_p99_us = 0.0;
   int unconverged = 0;     // revdist queries that did not reach tol
   int fcl_zero = 0;        // frames FCL reported 0 (intersecting triangles)
   // Accuracy on the certified sample: |answer - certified distance| (max), and

@@ -314,15 +314,16 @@ void motion_md(std::string& md, const BenchResult& r) {
         "FCL time the same frames in the same run. Times are thread CPU microseconds per query.\n\n";
   for (double eps : r.options.eps) {
     md += "### eps " + eps_label(eps) + "\n\n| pair | median | p90 | proven median | proven p90 | FCL median | FCL p90 | "
-          "FCL / revdist | node pairs | leaf pairs | patch pairs | overlaps | FCL zero | unconverged |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "FCL / revdist | node pairs | leaf pairs | patch pairs | overlaps proven / planned | p99 on planned | FCL zero | "
+          "unconverged |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const BenchRecord* x : select(r, "motion", eps)) {
       md += "| " + (x->pair == "all" ? "**all**" : x->pair) + " | " + fmt("%.4g", x->median_us) + " | " +
             fmt("%.4g", x->p90_us) + " | " + fmt("%.4g", x->proven_median_us) + " | " +
             fmt("%.4g", x->proven_p90_us) + " | " + fmt("%.4g", x->fcl_median_us) + " | " +
             fmt("%.4g", x->fcl_p90_us) + " | " + fmt("%.3g", x->ratio) + " | " + fmt("%.1f", x->node_pairs) + " | " +
             fmt("%.1f", x->leaf_pairs) + " | " + fmt("%.1f", x->patch_pairs) + " | " + std::to_string(x->overlaps) +
-            " | " + std::to_string(x->fcl_zero) + " | " + std::to_string(x->unconverged) + " |\n";
+            " / " + std::to_string(x->planned_overlaps) + " | " + fmt("%.4g", x->overlap_p99_us) + " | " +
+            std::to_string(x->fcl_zero) + " | " + std::to_string(x->unconverged) + " |\n";
     }
     md += "\n";
   }
@@ -358,6 +359,34 @@ void build_md(std::string& md, const BenchResult& r) {
   md += "\n";
 }
 
+// Issue 9's targets beside what this run measured (finest and coarsest eps of the run).
+void targets_md(std::string& md, const BenchResult& r) {
+  const double fine = *std::min_element(r.options.eps.begin(), r.options.eps.end());
+  const double coarse = *std::max_element(r.options.eps.begin(), r.options.eps.end());
+  const BenchRecord* f = find(r, "motion", "all", fine);
+  const BenchRecord* c = find(r, "motion", "all", coarse);
+  if (!f || !c) return;
+  double build = 0;
+  for (const BenchRecord* x : select(r, "build", fine)) build = std::max(build, x->mean_us);
+  auto row = [&](const std::string& what, const std::string& target, double v, bool met) {
+    md += "| " + what + " | " + target + " | " + fmt("%.4g", v) + " | " + (std::isfinite(v) ? (met ? "yes" : "**no**") : "–") + " |\n";
+  };
+  const std::string at = " (eps " + eps_label(fine) + ")";
+  md += "Targets (issue 9), all pairs and frames of Figure 12:\n\n| quantity | target | measured | met |\n|---|---|---|---|\n";
+  row("median query us" + at, "<= 10", f->median_us, f->median_us <= 10);
+  row("p90 query us" + at, "<= 40", f->p90_us, f->p90_us <= 40);
+  row("FCL / revdist medians" + at, ">= 100", f->ratio, f->ratio >= 100);
+  row("median growth eps " + eps_label(coarse) + " -> " + eps_label(fine), "<= 2", f->median_us / c->median_us,
+      f->median_us / c->median_us <= 2);
+  row("p90 growth eps " + eps_label(coarse) + " -> " + eps_label(fine), "<= 2", f->p90_us / c->p90_us,
+      f->p90_us / c->p90_us <= 2);
+  row("proven-mode median us" + at, "<= 30", f->proven_median_us, f->proven_median_us <= 30);
+  row("p99 us on the " + std::to_string(f->planned_overlaps) + " slightly overlapping frames" + at, "<= 50",
+      f->overlap_p99_us, f->overlap_p99_us <= 50);
+  row("slowest mean build / rebuild us" + at, "<= 500", build, build <= 500);
+  md += "\n";
+}
+
 }  // namespace
 
 std::string bench_json(const BenchResult& r) {
@@ -389,6 +418,9 @@ std::string bench_json(const BenchResult& r) {
                         {"quick_pairs", x.quick_pairs},
                         {"refined", x.refined},
                         {"overlaps", x.overlaps},
+                        {"planned_overlaps", x.planned_overlaps},
+                        {"overlap_median_us", num(x.overlap_median_us)},
+                        {"overlap_p99_us", num(x.overlap_p99_us)},
                         {"unconverged", x.unconverged},
                         {"fcl_zero", x.fcl_zero},
                         {"exact_frames", x.exact_frames},
@@ -439,6 +471,7 @@ std::vector<BenchFile> bench_report_files(const BenchResult& r, const std::strin
             fmt("%.4g", x->proven_median_us) + " | " + fmt("%.4g", x->proven_p90_us) + " | " +
             fmt("%.4g", x->fcl_median_us) + " | " + fmt("%.4g", x->fcl_p90_us) + " | " + fmt("%.3g", x->ratio) + " |\n";
   md += "\n";
+  targets_md(md, r);
   accuracy_md(md, r);
   motion_md(md, r);
   deform_md(md, r);

@@ -44,8 +44,8 @@ double profile_reach(const Profile& p);
 // Frames of a smooth motion: both solids turn about fixed random axes, b's
 // direction from a circles a on a tilted, wobbling path, and b's distance along
 // that direction is solved per frame (Lipschitz steps and safeguarded secant on
-// solid_distance, warm-started from the previous frame) so the gap is within
-// 2 % of clearance * size of the target. `a` uses its R and t as the initial pose.
+// solid_distance, started where the last two frames point) so the gap is within
+// 5 % of clearance * size of the target. `a` uses its R and t as the initial pose.
 // Deterministic for a given seed.
 std::vector<MotionFrame> near_contact_motion(const PosedSolid& a, const ShapeAt& b, const MotionOptions& options);
 

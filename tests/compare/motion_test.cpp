@@ -48,13 +48,13 @@ TEST(NearContactMotion, GapFollowsPlanAndMotionIsContinuous) {
     EXPECT_LE(f.target, delta * (1 + o.swing) * (1 + 1e-12));
     A.R = f.R_WA, A.t = f.t_WA, B.R = f.R_WB, B.t = f.t_WB;
     const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{1e-3 * delta});
-    if (f.target >= 0.06 * delta) {
-      // The solver accepts 2 % of delta; the check's own bracket is 0.1 %.
-      EXPECT_NEAR(r.distance, f.target, 0.021 * delta) << "frame " << j;
+    if (f.target >= 0.15 * delta) {
+      // The solver accepts 5 % of delta; the check's own bracket is 0.1 %.
+      EXPECT_NEAR(r.distance, f.target, 0.051 * delta) << "frame " << j;
     } else if (f.target < -0.01 * delta) {
       ++planned_overlaps;
-      // Pushed in along the approach past first contact: at most touching.
-      EXPECT_LE(r.lower, 0.06 * delta) << "frame " << j;
+      // Solved to a gap of 0.15 delta (+- 0.05), then pushed in along the approach: closer than that.
+      EXPECT_LE(r.lower, 0.2 * delta) << "frame " << j;
     }
     if (j > 0) {
       // 24 frames of one slow revolution: b moves by much less than the pair's size per frame.
