@@ -32,7 +32,7 @@ struct ExactSolidResult {
   Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  // world points on the two surfaces, |a - b| ~ upper
   double scale = 0.0;
   long boxes = 0;                // parameter boxes evaluated
-  double time_ms = 0.0;
+  double time_ms = 0.0;          // per-thread CPU time of the query
 };
 
 // Distance between solid a (profile a, world = R(pose_a) local + t) and solid b.
