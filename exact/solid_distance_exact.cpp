@@ -53,12 +53,15 @@
 #include "exact/solid_distance_exact.h"
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <ctime>
 #include <limits>
 #include <queue>
 #include <vector>
 
+#include "exact/circle_distance_exact.h"
 #include "exact/double_interval.h"
 #include "exact/solid_exact_internal.h"
 
@@ -555,6 +558,185 @@ class Solver {
 
   bool coaxial() const { return coaxial_; }
 
+  // Tube against tube (paper section 3: a torus is the offset of its major
+  // circle). An arc element, or a curve certified to lie within [R_lo, R_hi] of
+  // a centre, sweeps a surface inside the solid tube of radius R_hi around the
+  // circle its centre sweeps; the distance between two solid tubes is
+  // max(0, d(C_S, C_E) - R_S - R_E) (Minkowski sums), so
+  //   dist(patch_S, patch_E) >= d(C_S, C_E) - R_S,hi - R_E,hi,
+  // with d(C_S, C_E) the certified circle distance (exact/circle_distance_exact).
+  // When the closest circle pair's direction lies in both elements' sectors the
+  // surface points along it are a genuine pair at that distance (up to R_hi -
+  // R_lo): the job is settled without a search, continua of closest pairs
+  // included (coaxial, interlocked rings, a sphere around a point).
+  // The circles are rounded to doubles for the circle engine; each point of the
+  // rounded circle is within delta of the true one, which the bound subtracts.
+  struct Tube {
+    bool ok = false;
+    double lower = 0.0;   // proven lower bound of the job's distance, rounded down
+    double upper_sq = kInf;  // squared distance of a genuine pair, rounded up
+    Box box;              // the degenerate box of that pair (witness)
+  };
+  Tube tube_bound(int j, double tol) const {
+    Tube t;
+    const Job& job = jobs[j];
+    const int sides[2] = {job.s_side, 1 - job.s_side};
+    const int ids[2] = {job.s_elem, job.e_elem};
+    double cr[2], cz[2], R_hi[2], R_lo[2], c_err[2];
+    for (int k = 0; k < 2; ++k)
+      if (!circular(elems_[sides[k]][ids[k]], tol, cr[k], cz[k], R_lo[k], R_hi[k], c_err[k])) return t;
+    // In E's frame (E = sides[1]): C_E = ((0, 0, cz_E), e3, cr_E); C_S through the relative frame.
+    const Frame& f = frames_[job.s_side];
+    Circle3 circ[2];
+    double delta[2] = {c_err[0], c_err[1]};
+    circ[1].center = Vec3(0, 0, cz[1]);
+    circ[1].normal = Vec3::UnitZ();
+    circ[1].radius = cr[1];
+    circ[0].radius = cr[0];
+    double eta = 0.0, cw = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const Ia ci = f.o[i] + f.M[i][2] * Ia(cz[0]);
+      circ[0].center[i] = 0.5 * (ci.lo() + ci.hi());
+      circ[0].normal[i] = 0.5 * (f.M[i][2].lo() + f.M[i][2].hi());
+      cw += sqr(Ia(ci.width())).hi();
+      eta += sqr(Ia(f.M[i][2].width())).hi();
+    }
+    // |c - c~| <= |widths|; a unit normal off by eta turns the circle by an angle
+    // <= 2 eta (eta << 1), moving its points by <= r * 2 eta.
+    eta = std::sqrt(eta) * 1.0001;
+    if (!(eta < 1e-3)) return t;
+    delta[0] = (Ia(delta[0]) + Ia(std::sqrt(cw) * 1.0001) + Ia(cr[0]) * Ia(2.0 * eta)).hi();
+    // Elements of one torus share its circle: certify each circle pair once.
+    const std::array<double, 5> key = {cr[0], cz[0], cr[1], cz[1], static_cast<double>(job.s_side)};
+    const ExactCircleResult* hit = nullptr;
+    for (const auto& [k, r] : circle_cache_)
+      if (k == key) hit = &r;
+    if (!hit) {
+      circle_cache_.emplace_back(key, circle3_circle3_distance_exact(circ[0], circ[1]));
+      hit = &circle_cache_.back().second;
+    }
+    const ExactCircleResult cd = *hit;
+    if (cd.status == ExactStatus::not_certified) return t;
+    const double lb = (Ia(cd.lower) - Ia(delta[0]) - Ia(delta[1]) - Ia(R_hi[0]) - Ia(R_hi[1])).lo();
+    if (!(lb > 0)) return t;  // the tubes may meet: nothing gained over the search
+    t.ok = true;
+    t.lower = lb;
+    // A genuine pair along the circles' closest pair, found in doubles and then
+    // bounded like any box (so it is a proof whatever the doubles did).
+    const Vec3 pa = cd.point_a, pb = cd.point_b, d = (pb - pa).normalized();
+    const Vec3 target_s = pa + d * 0.5 * (R_lo[0] + R_hi[0]);
+    const Vec3 target_e = pb - d * 0.5 * (R_lo[1] + R_hi[1]);
+    // Target points in each solid's own frame: S's through the inverse frame.
+    Vec3 xs;
+    for (int i = 0; i < 3; ++i) {
+      double acc = 0.0;
+      for (int k = 0; k < 3; ++k) acc += mid(f.M[k][i]) * (target_s[k] - mid(f.o[k]));
+      xs[i] = acc;
+    }
+    Box b;
+    b.job = j;
+    b.lo[0] = b.hi[0] = project(delem_[sides[0]][ids[0]], Vec2(std::hypot(xs.x(), xs.y()), xs.z()));
+    b.lo[1] = b.hi[1] = s_of(std::atan2(xs.y(), xs.x()));
+    b.lo[2] = b.hi[2] =
+        job.three_d ? project(delem_[sides[1]][ids[1]], Vec2(std::hypot(target_e.x(), target_e.y()), target_e.z())) : 0.0;
+    const Eval ev = bound_box<Ia>(b, ielem_[sides[0]][ids[0]], ielem_[sides[1]][ids[1]], iframes_[job.s_side]);
+    t.upper_sq = ev.upper;
+    t.box = b;
+    return t;
+  }
+
+ private:
+  // Is the element's curve within [R_lo, R_hi] of a centre (cr, cz), proven? Arcs
+  // are; a curve is when the Bernstein coefficients of (|C - c|^2 - R^2) w^2
+  // over those of w^2 say so within tol / 64 (rational quadratic circles whose
+  // weights were rounded, for instance). c_err: how far the true centre may be
+  // from (cr, cz) (arcs: the rational circumcentre's enclosure).
+  bool circular(const Element& e, double tol, double& cr, double& cz, double& R_lo, double& R_hi,
+                double& c_err) const {
+    if (e.kind == ElemKind::line) return false;
+    if (e.kind == ElemKind::arc) {
+      cr = mid(e.c.x);
+      cz = mid(e.c.y);
+      c_err = std::hypot(e.c.x.width(), e.c.y.width()) * 1.0001;
+      R_lo = e.R.lo() - c_err;
+      R_hi = e.R.hi() + c_err;
+      return cr >= 0 && R_lo > 0;
+    }
+    // A circle through the curve's ends and middle, in doubles (any centre is
+    // sound: the annulus below is what is proven).
+    Ia r0, z0, r1, z1, rm, zm;
+    elem_point(e, Ia(0.0), r0, z0);
+    elem_point(e, Ia(1.0), r1, z1);
+    elem_point(e, Ia(0.5), rm, zm);
+    const Vec2 p0(mid(r0), mid(z0)), p1(mid(r1), mid(z1)), pm(mid(rm), mid(zm));
+    const Vec2 a = pm - p0, b = p1 - p0;
+    const double den = 2.0 * (a.x() * b.y() - a.y() * b.x());
+    if (!(std::abs(den) > 1e-12 * (a.squaredNorm() + b.squaredNorm()))) return false;
+    const Vec2 c = p0 + Vec2(b.y() * a.squaredNorm() - a.y() * b.squaredNorm(),
+                             a.x() * b.squaredNorm() - b.x() * a.squaredNorm()) / den;
+    if (!(c.x() >= 0)) return false;
+    const double R = (p0 - c).norm();
+    using fit_audit_detail::bernstein_product;
+    const std::size_t n = e.seg.w.size();
+    Poly qx(n), qy(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      qx[i] = e.seg.x[i] - Ia(c.x()) * e.seg.w[i];
+      qy[i] = e.seg.y[i] - Ia(c.y()) * e.seg.w[i];
+    }
+    const Poly xx = bernstein_product(qx, qx), yy = bernstein_product(qy, qy), ww = bernstein_product(e.seg.w, e.seg.w);
+    double m = kInf, M = -kInf;
+    for (std::size_t i = 0; i < ww.size(); ++i) {
+      if (!ww[i].pos()) return false;
+      const Ia q = (xx[i] + yy[i]) / ww[i] - sqr(Ia(R));
+      m = std::min(m, q.lo());
+      M = std::max(M, q.hi());
+    }
+    const Ia lo2 = sqr(Ia(R)) + Ia(m), hi2 = sqr(Ia(R)) + Ia(M);
+    if (!lo2.pos()) return false;
+    R_lo = fit_audit_detail::sqrt_nonneg(lo2).lo();
+    R_hi = fit_audit_detail::sqrt_nonneg(hi2).hi();
+    if (!(R_hi - R_lo <= tol / 64)) return false;
+    cr = c.x();
+    cz = c.y();
+    c_err = 0.0;
+    return true;
+  }
+  // The parameter of the element's point nearest to q, in doubles (sampling,
+  // then golden-section search): only a guess; its use is bounded exactly.
+  static double project(const ElemT<Di>& e, const Vec2& q) {
+    auto dist2 = [&](double u) {
+      Di r, z;
+      point_of(e, Di(u), r, z);
+      return sq2(0.5 * (r.lo() + r.hi()) - q.x()) + sq2(0.5 * (z.lo() + z.hi()) - q.y());
+    };
+    const int n = 64;
+    int best = 0;
+    double bd = kInf;
+    for (int i = 0; i <= n; ++i) {
+      const double v = dist2(static_cast<double>(i) / n);
+      if (v < bd) bd = v, best = i;
+    }
+    double lo = std::max(0.0, (best - 1.0) / n), hi = std::min(1.0, (best + 1.0) / n);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 80 && hi - lo > 1e-17; ++it) {
+      const double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      if (dist2(x1) < dist2(x2))
+        hi = x2;
+      else
+        lo = x1;
+    }
+    return 0.5 * (lo + hi);
+  }
+  static double sq2(double x) { return x * x; }
+  // Inverse of psi_of (the chart of solid_exact_internal.h).
+  static double s_of(double psi) {
+    if (std::abs(psi) <= 0.5 * M_PI) return std::clamp(0.5 * (std::tan(0.5 * psi) + 1.0), 0.0, 1.0);
+    const double p = psi > 0 ? psi - M_PI : psi + M_PI;
+    return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
+  }
+
+ public:
+
  private:
   static double mid(const Ia& x) { return 0.5 * (x.lo() + x.hi()); }
 
@@ -567,6 +749,7 @@ class Solver {
   std::vector<ElemT<Ia>> ielem_[2];
   std::vector<ElemT<Di>> delem_[2];
   double mpfi_below_ = 0.0;
+  mutable std::vector<std::pair<std::array<double, 5>, ExactCircleResult>> circle_cache_;
 };
 
 // Size of a profile for the width target: the extent of its control points.
@@ -596,10 +779,13 @@ double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
 ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, const Profile& b, const Pose& pose_b,
                                       const ExactSolidOptions& options) {
   const double t0 = thread_cpu_ms();
+  const auto wall0 = std::chrono::steady_clock::now();  // progress is paced in wall time, as users see it
   ExactSolidResult res;
   res.upper = kInf;
+  const Solver* solver_ptr = nullptr;
   auto finish = [&]() {
     res.time_ms = thread_cpu_ms() - t0;
+    if (solver_ptr) res.mpfi_boxes = solver_ptr->mpfi_boxes;
     return res;
   };
   std::string why;
@@ -618,6 +804,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.scale = std::max({profile_size(a), profile_size(b), (pose_a.translation - pose_b.translation).norm()});
   const double tol = options.absolute_width > 0 ? options.absolute_width : options.relative_width * res.scale;
   Solver solver(elems, poses, exactly_coaxial(pose_a, pose_b));
+  solver_ptr = &solver;
   solver.make_jobs();
   // Below this distance a double bound's rounding (~1e-13 scale^2 in a squared
   // distance, ~1e-13 scale^2 / d after the square root) could exceed tol / 10.
@@ -650,10 +837,11 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   double stuck_min = kInf;
   double ub = kInf;
   Box best;
+  std::vector<double> floor_sq;  // proven lower bound of each job (tube pairs), squared
   auto consider = [&](Box bx) {
     const Eval ev = solver.evaluate(bx);
     ++res.boxes;
-    bx.lower = ev.lower;
+    bx.lower = std::max(ev.lower, floor_sq[bx.job]);
     bx.split = ev.split;
     if (ev.upper < ub) {
       ub = ev.upper;
@@ -666,9 +854,33 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     } else
       queue.push(bx);
   };
+  // Tube pairs first: settled ones never enter the search, and their genuine
+  // pairs give the search an upper bound to prune with from the start.
+  floor_sq.assign(solver.jobs.size(), 0.0);
+  std::vector<char> settled(solver.jobs.size(), 0);
+  std::vector<double> tube_lower(solver.jobs.size(), -1.0);
+  for (std::size_t j = 0; j < solver.jobs.size(); ++j) {
+    const Solver::Tube t = solver.tube_bound(static_cast<int>(j), tol);
+    if (!t.ok) continue;
+    tube_lower[j] = t.lower;
+    floor_sq[j] = sq_lo<Ia>(t.lower);
+    if (t.upper_sq < ub) {
+      ub = t.upper_sq;
+      best = t.box;
+    }
+  }
+  double settled_min = kInf;  // the least floor of the settled jobs, squared
+  for (std::size_t j = 0; j < solver.jobs.size(); ++j)
+    if (tube_lower[j] >= 0 && round_up_sqrt(ub) - tube_lower[j] <= 0.25 * tol) {
+      settled[j] = 1;  // no pair of this job is nearer than the bracket's lower end
+      settled_min = std::min(settled_min, floor_sq[j]);
+      ++res.closed_form_pairs;
+    }
+  res.element_pairs = static_cast<int>(solver.jobs.size());
+  res.searched_pairs = res.element_pairs - res.closed_form_pairs;
   const int n_s = solver.coaxial() ? 1 : 4;
   for (std::size_t j = 0; j < solver.jobs.size(); ++j)
-    for (int k = 0; k < n_s; ++k) {
+    for (int k = 0; k < n_s && !settled[j]; ++k) {
       Box bx;
       bx.job = static_cast<int>(j);
       bx.lo[0] = 0.0;
@@ -680,25 +892,41 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
       consider(bx);
     }
   auto min_lower = [&]() {
-    double m = std::min(ub, stuck_min);
+    double m = std::min({ub, stuck_min, settled_min});
     if (!queue.empty()) m = std::min(m, queue.top().lower);
     return m;
   };
   long pops = 0;
   bool budget_hit = false;
+  const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(options.progress_interval_s));
+  auto next_progress = wall0 + interval;
   while (!queue.empty()) {
     const Box top = queue.top();
     if (top.lower >= ub) {  // every remaining box is at least as far
       while (!queue.empty()) queue.pop();
       break;
     }
-    if (std::sqrt(ub) - std::sqrt(std::min(top.lower, stuck_min)) <= 0.5 * tol) break;
+    if (std::sqrt(ub) - std::sqrt(std::min({top.lower, stuck_min, settled_min})) <= 0.5 * tol) break;
     if (res.boxes >= options.max_boxes) {
       budget_hit = true;
       break;
     }
     queue.pop();
     ++pops;
+    if (options.progress && pops % 256 == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now >= next_progress) {
+        next_progress = now + interval;
+        ExactProgress pr;
+        pr.boxes = res.boxes;
+        pr.lower = round_down_sqrt(std::min({top.lower, stuck_min, settled_min}));
+        pr.upper = round_up_sqrt(ub);
+        pr.target_width = tol;
+        pr.seconds = std::chrono::duration<double>(now - wall0).count();
+        options.progress(pr);
+      }
+    }
     // Crossing surfaces keep the lower bound at 0 along a curve: look for a proof
     // of overlap near the best pair now and then.
     if (top.lower <= 0.0 && pops % 512 == 0) {
