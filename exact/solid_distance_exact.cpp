@@ -298,8 +298,11 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
     double best = -1.0;
     for (int i = 0; i < 3; ++i) {
       if (!(b.lo[i] < c[i] && c[i] < b.hi[i])) continue;  // cannot be halved (or frozen)
-      if (cost[i] > best) {
-        best = cost[i];
+      // A NaN cost (0 x inf: an enclosure went unbounded, e.g. a rational weight's
+      // range reaching 0 over a wide box) means "unknown, large": halve there.
+      const double ci = std::isnan(cost[i]) ? kInf : cost[i];
+      if (ci > best) {
+        best = ci;
         ev.split = i;
       }
     }
@@ -583,8 +586,15 @@ class Solver {
     const int sides[2] = {job.s_side, 1 - job.s_side};
     const int ids[2] = {job.s_elem, job.e_elem};
     double cr[2], cz[2], R_hi[2], R_lo[2], c_err[2];
-    for (int k = 0; k < 2; ++k)
-      if (!circular(elems_[sides[k]][ids[k]], tol, cr[k], cz[k], R_lo[k], R_hi[k], c_err[k])) return t;
+    for (int k = 0; k < 2; ++k) {
+      auto& memo = circ_memo_[sides[k]];
+      if (memo.empty()) memo.resize(elems_[sides[k]].size());
+      CircInfo& ci = memo[ids[k]];
+      if (ci.state == 0)
+        ci.state = circular(elems_[sides[k]][ids[k]], tol, ci.cr, ci.cz, ci.R_lo, ci.R_hi, ci.c_err) ? 1 : 2;
+      if (ci.state != 1) return t;
+      cr[k] = ci.cr, cz[k] = ci.cz, R_lo[k] = ci.R_lo, R_hi[k] = ci.R_hi, c_err[k] = ci.c_err;
+    }
     // In E's frame (E = sides[1]): C_E = ((0, 0, cz_E), e3, cr_E); C_S through the relative frame.
     const Frame& f = frames_[job.s_side];
     Circle3 circ[2];
@@ -750,6 +760,11 @@ class Solver {
   std::vector<ElemT<Di>> delem_[2];
   double mpfi_below_ = 0.0;
   mutable std::vector<std::pair<std::array<double, 5>, ExactCircleResult>> circle_cache_;
+  struct CircInfo {
+    int state = 0;  // 0 not yet asked, 1 circular, 2 not
+    double cr = 0, cz = 0, R_lo = 0, R_hi = 0, c_err = 0;
+  };
+  mutable std::vector<CircInfo> circ_memo_[2];
 };
 
 // Size of a profile for the width target: the extent of its control points.
@@ -809,7 +824,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   // Below this distance a double bound's rounding (~1e-13 scale^2 in a squared
   // distance, ~1e-13 scale^2 / d after the square root) could exceed tol / 10.
   const double d_mpfi = 1e-12 * res.scale * res.scale / tol;
-  solver.set_mpfi_below(d_mpfi * d_mpfi);
+  solver.set_mpfi_below(options.double_bounds ? d_mpfi * d_mpfi : kInf);
 
   auto report_overlap = [&](const Vec3& p) {
     res.certified = true;
@@ -859,7 +874,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   floor_sq.assign(solver.jobs.size(), 0.0);
   std::vector<char> settled(solver.jobs.size(), 0);
   std::vector<double> tube_lower(solver.jobs.size(), -1.0);
-  for (std::size_t j = 0; j < solver.jobs.size(); ++j) {
+  for (std::size_t j = 0; j < solver.jobs.size() && options.use_structure; ++j) {
     const Solver::Tube t = solver.tube_bound(static_cast<int>(j), tol);
     if (!t.ok) continue;
     tube_lower[j] = t.lower;

@@ -27,6 +27,10 @@ struct ExactSolidOptions {
   double relative_width = 1e-9;
   double absolute_width = 0.0;  // > 0: the target width itself, instead of relative_width * scale
   long max_boxes = 2000000;     // work budget: parameter boxes evaluated
+  // Off only to test the paths against each other: tube pairs by the circle
+  // distance, and box bounds on outward-rounded doubles before MPFI.
+  bool use_structure = true;
+  bool double_bounds = true;
   // Called from the query's thread at most once per progress_interval_s of wall
   // time, never before the first interval has passed (short queries stay silent).
   std::function<void(const ExactProgress&)> progress;
