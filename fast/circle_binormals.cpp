@@ -181,7 +181,10 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     const double h = d.dot(a.n), px = d.dot(a.u), py = d.dot(a.v);
     const double rho = std::sqrt(px * px + py * py), R = a.radius * sigma;
     if (R == 0 || rho <= 8 * kEps * d.cwiseAbs().maxCoeff()) {
-      const double len = std::sqrt(h * h + R * R);
+      // Two points (R = 0): the segment between them, |d|, not its axial part;
+      // Q on a's axis: sqrt(h^2 + R^2) up to the rounding-sized rho.
+      const double e = rho - R;
+      const double len = std::sqrt(h * h + e * e);
       if (len > contact) out.push_back({0, a.center + a.radius * a.u, len / sigma});
       return out;
     }
