@@ -7,5 +7,7 @@ namespace revdist::cli {
 void add_circles_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_distance_command(CLI::App& app);
+void add_scene_command(CLI::App& app);
+void add_scene_gen_command(CLI::App& app);
 
 }  // namespace revdist::cli
