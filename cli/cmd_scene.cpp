@@ -34,6 +34,7 @@ struct Options {
   double tol = 1e-6;
   bool json = false;
   bool stats_only = false;
+  bool no_coherence = false;
 };
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
@@ -41,7 +42,8 @@ Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 Json stats_json(const SceneStats& s) {
   return {{"instances", s.instances},        {"pairs_total", s.pairs_total},
           {"pairs_tested", s.pairs_tested},  {"pairs_culled", s.pairs_culled},
-          {"pairs_threshold", s.pairs_threshold}, {"narrow_calls", s.narrow_calls},
+          {"pairs_threshold", s.pairs_threshold}, {"pairs_coherent", s.pairs_coherent},
+          {"narrow_calls", s.narrow_calls},
           {"node_pairs", s.node_pairs},      {"nodes_built", s.nodes_built},
           {"broad_nodes", s.broad_nodes},    {"broad_rebuilt", s.broad_rebuilt},
           {"time_ms", s.time_ms},            {"cpu_ms", s.cpu_ms}};
@@ -73,6 +75,7 @@ void run(const Options& o) {
   so.eps = o.eps;
   so.distance.tol = o.tol;
   so.threads = o.threads;
+  so.coherence = !o.no_coherence;
   const auto b0 = std::chrono::steady_clock::now();
   Scene scene(c, so);
   const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
@@ -114,10 +117,10 @@ void run(const Options& o) {
     } else {
       char line[256];
       std::snprintf(line, sizeof line,
-                    "frame %ld: %zu pairs; tested %ld of %ld, culled %ld, settled by threshold %ld, nodes built %ld, "
-                    "%.3f ms (cpu %.3f ms)\n",
+                    "frame %ld: %zu pairs; tested %ld of %ld, culled %ld, settled by threshold %ld, from the previous "
+                    "frame %ld, nodes built %ld, %.3f ms (cpu %.3f ms)\n",
                     f, pairs.size(), st.pairs_tested, st.pairs_total, st.pairs_culled, st.pairs_threshold,
-                    st.nodes_built, st.time_ms, st.cpu_ms);
+                    st.pairs_coherent, st.nodes_built, st.time_ms, st.cpu_ms);
       text += line;
       if (!o.stats_only && !pairs.empty()) text += table.str();
     }
@@ -168,6 +171,8 @@ void add_scene_command(CLI::App& app) {
   cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol")->capture_default_str();
   cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-scene/1)");
   cmd->add_flag("--stats-only", opts->stats_only, "counters and times only, no pair list");
+  cmd->add_flag("--no-coherence", opts->no_coherence,
+                "--within: recompute every pair each frame instead of settling it from its previous frame");
   cmd->callback([opts] { run(*opts); });
 }
 

@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using PairKey = std::pair<std::int32_t, std::int32_t>;
 
 // Wall and CPU time of one scene step, added to the stats when it ends.
 class StepTimer {
@@ -130,6 +131,7 @@ void SceneStats::add(const SceneStats& o) {
   pairs_tested += o.pairs_tested;
   pairs_culled += o.pairs_culled;
   pairs_threshold += o.pairs_threshold;
+  pairs_coherent += o.pairs_coherent;
   narrow_calls += o.narrow_calls;
   node_pairs += o.node_pairs;
   nodes_built += o.nodes_built;
@@ -161,7 +163,12 @@ Scene::Scene(const Case& c, const SceneOptions& options) : options_(options), mo
       level = std::move(next);
     }
     std::vector<LocalBound> b;
-    for (std::int32_t k : level) b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
+    double reach = 0.0;
+    for (std::int32_t k : level) {
+      b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
+      reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
+    }
+    reach_.push_back(reach);
     bounds_.push_back(std::move(b));
   }
   boxes_.resize(size());
@@ -222,29 +229,92 @@ SolidDistanceResult Scene::query(std::int32_t a, std::int32_t b, double threshol
   return solid_distance(model_.instances[a], model_.instances[b], o);
 }
 
-std::vector<ScenePair> Scene::within(double d, SceneStats* st) const {
+// A point p of a (|p| <= reach) sits at X_ba p in b's frame. Between the
+// remembered relative pose and the current one it moved by at most
+// |dR|_F reach + |dt| (Frobenius bounds the spectral norm), so the distance
+// is at least the old lower bound minus that; the remembered witness points,
+// genuine surface points, at the current poses give an upper bound.
+bool Scene::settle_from_memory(const PairMemory& m, double d, ScenePair* p) const {
+  const PosedSolid& A = model_.instances[m.a];
+  const PosedSolid& B = model_.instances[m.b];
+  const Mat3 R_ba = B.R.transpose() * A.R;
+  const Vec3 t_ba = B.R.transpose() * (A.t - B.t);
+  const double reach = reach_[model_.shape_of[m.a]];
+  // Rounding of the products above: a few hundred ulps of the coordinates involved.
+  const double round = 256 * DBL_EPSILON * (reach + t_ba.norm() + m.t_ba.norm() + reach_[model_.shape_of[m.b]]);
+  const double moved = (R_ba - m.R_ba).norm() * reach + (t_ba - m.t_ba).norm() + round;
+  const double lower = std::max(0.0, m.lower - moved);
+  const Vec3 x = A.R * m.p_a + A.t, y = B.R * m.p_b + B.t;
+  const double upper = (x - y).norm();
+  if (!(upper <= d || lower > d)) return false;
+  SolidDistanceResult& r = p->result;
+  r.lower = std::min(lower, upper);
+  r.upper = upper;
+  r.distance = 0.5 * (r.lower + r.upper);
+  r.point_a = x;
+  r.point_b = y;
+  r.decided = true;
+  r.converged = upper - r.lower <= options_.distance.tol;
+  r.reason = "settled from the previous frame";
+  return true;
+}
+
+std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
   tree_.pairs_within(d, &cand);
   std::sort(cand.begin(), cand.end());
+  // The remembered pairs, matched to the candidates (both sorted).
+  std::vector<const PairMemory*> old(cand.size(), nullptr);
+  if (options_.coherence) {
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < cand.size(); ++k) {
+      while (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) < cand[k]) ++j;
+      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid) old[k] = &memory_[j];
+    }
+  }
   std::vector<ScenePair> all(cand.size());
+  std::vector<PairMemory> memory(cand.size());
+  std::vector<char> coherent(cand.size(), 0);
   timer.add_worker_cpu(parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
     ScenePair& p = all[k];
     p.a = cand[k].first;
     p.b = cand[k].second;
-    p.result = query(p.a, p.b, d);
+    if (old[k] && settle_from_memory(*old[k], d, &p)) {
+      coherent[k] = 1;
+      memory[k] = *old[k];  // keep the reference pose: bounds do not loosen frame by frame
+    } else {
+      p.result = query(p.a, p.b, d);
+      const PosedSolid& A = model_.instances[p.a];
+      const PosedSolid& B = model_.instances[p.b];
+      PairMemory& m = memory[k];
+      m.a = p.a;
+      m.b = p.b;
+      m.R_ba = B.R.transpose() * A.R;
+      m.t_ba = B.R.transpose() * (A.t - B.t);
+      m.lower = p.result.lower;
+      m.p_a = A.R.transpose() * (p.result.point_a - A.t);
+      m.p_b = B.R.transpose() * (p.result.point_b - B.t);
+      m.valid = !p.result.overlap && std::isfinite(p.result.upper);
+    }
     p.within = p.result.upper <= d;
   }));
+  if (options_.coherence) memory_ = std::move(memory);
   std::vector<ScenePair> out;
-  for (ScenePair& p : all) {
-    st->node_pairs += p.result.stats.node_pairs;
-    if (p.result.decided) ++st->pairs_threshold;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    ScenePair& p = all[k];
+    if (coherent[k]) {
+      ++st->pairs_coherent;
+    } else {
+      ++st->narrow_calls;
+      st->node_pairs += p.result.stats.node_pairs;
+      if (p.result.decided) ++st->pairs_threshold;
+    }
     if (!(p.result.lower > d)) out.push_back(std::move(p));
   }
   st->pairs_total += n * (n - 1) / 2;
   st->pairs_tested += static_cast<long>(cand.size());
-  st->narrow_calls += static_cast<long>(cand.size());
   st->pairs_culled += n * (n - 1) / 2 - static_cast<long>(cand.size());
   return out;
 }

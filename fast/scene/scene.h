@@ -19,6 +19,13 @@ struct SceneOptions {
   double eps = 1e-5;          // biarc bound of every shape's tree
   DistanceOptions distance;   // tol, rel_tol, budgets (threshold is the queries' own)
   int threads = 1;
+  // Frame coherence of within(d) at the scene level (the narrow phase is not
+  // touched): a pair's last bracket and witness points are kept with the
+  // pair's relative pose; on a later frame the witness points at the new poses
+  // give an upper bound and the old lower bound minus the most any point can
+  // have moved relative to the other solid a lower bound, which settles the
+  // pair without a narrow-phase call when either decides "within d?".
+  bool coherence = true;
 };
 
 struct ScenePair {
@@ -35,6 +42,7 @@ struct SceneStats {
   long pairs_tested = 0;     // pairs the narrow phase touched
   long pairs_culled = 0;     // never touched (pairs_total - pairs_tested)
   long pairs_threshold = 0;  // settled by the threshold predicate before the bracket met tol
+  long pairs_coherent = 0;   // settled from the pair's previous frame, without a narrow-phase call
   long narrow_calls = 0;     // solid_distance calls (k closest reruns a pair that enters the top k)
   long node_pairs = 0;       // narrow-phase work, summed
   long nodes_built = 0;      // biarc tree nodes built for this frame (trees are cached per shape)
@@ -61,7 +69,9 @@ class Scene {
   void set_frame(double f, SceneStats* st);
 
   // Every pair whose distance is <= d (within = true) or not proven > d, sorted by (a, b).
-  std::vector<ScenePair> within(double d, SceneStats* st) const;
+  // With options.coherence, a pair may be settled from its bracket of an earlier
+  // call (see SceneOptions), so brackets, not decisions, depend on the history.
+  std::vector<ScenePair> within(double d, SceneStats* st);
   // The k pairs of smallest upper bound (full brackets), sorted by (upper, a, b).
   std::vector<ScenePair> closest(std::size_t k, SceneStats* st) const;
   // The k instances nearest to instance i (a = i), sorted by (upper, b).
@@ -72,6 +82,16 @@ class Scene {
     Vec2 a, b;
     double radius;
   };
+  // What within(d) keeps of a pair for the next frame (SceneOptions::coherence).
+  struct PairMemory {
+    std::int32_t a = -1, b = -1;
+    Mat3 R_ba;  // pose of a in b's frame when the bracket was computed
+    Vec3 t_ba;
+    double lower = 0.0;
+    Vec3 p_a, p_b;  // witness points in a's and b's local frames
+    bool valid = false;  // a bracket with witnesses, no overlap (overlaps are recomputed)
+  };
+  bool settle_from_memory(const PairMemory& m, double d, ScenePair* p) const;
   Aabb world_box(std::size_t i) const;
   SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
   template <class Stream>
@@ -83,6 +103,8 @@ class Scene {
   CaseModel model_;
   std::vector<std::vector<LocalBound>> bounds_;  // per shape
   std::vector<Aabb> boxes_;                      // per instance, world
+  std::vector<double> reach_;                    // per shape: max |local point| of the solid
+  std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
   AabbTree tree_;
   long unreported_nodes_ = 0;
 };

@@ -79,12 +79,12 @@ double scene_scale(const Scene& s) {
   return m;
 }
 
-void expect_within_matches_brute(const Scene& s, double d, const std::map<PairKey, SolidDistanceResult>& brute) {
+SceneStats expect_within_matches_brute(Scene& s, double d, const std::map<PairKey, SolidDistanceResult>& brute) {
   SceneStats st;
   const std::vector<ScenePair> found = s.within(d, &st);
   std::map<PairKey, const ScenePair*> got;
   for (const ScenePair& p : found) {
-    ASSERT_LT(p.a, p.b);
+    EXPECT_LT(p.a, p.b);
     EXPECT_TRUE(got.emplace(PairKey{p.a, p.b}, &p).second) << "pair reported twice";
   }
   EXPECT_TRUE(std::is_sorted(found.begin(), found.end(),
@@ -121,8 +121,9 @@ void expect_within_matches_brute(const Scene& s, double d, const std::map<PairKe
   EXPECT_EQ(st.pairs_total, static_cast<long>(brute.size()));
   EXPECT_EQ(st.pairs_culled + st.pairs_tested, st.pairs_total);
   EXPECT_GT(st.pairs_culled, 0) << "the broad phase culled nothing";
-  std::printf("within %.3g: %ld pairs within of %zu, %ld tested, %ld culled, %ld clear\n", d, within, brute.size(),
-              st.pairs_tested, st.pairs_culled, clear);
+  std::printf("within %.3g: %ld pairs within of %zu, %ld tested, %ld culled, %ld from the previous frame, %ld clear\n",
+              d, within, brute.size(), st.pairs_tested, st.pairs_culled, st.pairs_coherent, clear);
+  return st;
 }
 
 std::vector<PairKey> brute_closest(const std::map<PairKey, SolidDistanceResult>& brute, std::size_t k) {
@@ -201,15 +202,26 @@ TEST(Scene, BoxesHoldTheSolids) {
 
 TEST(Scene, WithinMatchesBruteForceOnMixedSolids) {
   const Case c = random_scene(test_seed(11, "WithinMixed"), 36, 2.5);
-  Scene s(c, SceneOptions{});
+  SceneOptions plain;
+  plain.coherence = false;
+  Scene s(c, plain);
   const auto brute = brute_force(s);
   for (double d : {0.0, 0.05, 0.4}) expect_within_matches_brute(s, d, brute);
+  // Moving mixed solids with coherence: settled pairs keep the brute force's answers.
+  Scene m(c, SceneOptions{});
+  for (double f : {0.0, 1.0}) {
+    SceneStats st;
+    m.set_frame(f, &st);
+    expect_within_matches_brute(m, 0.3, brute_force(m));
+  }
 }
 
 TEST(Scene, WithinMatchesBruteForceOnMovingRingMesh) {
   const Case c = case_from_json(ring_mesh_case(21, test_seed(3, "RingMesh")), "rings");
   Scene s(c, SceneOptions{});
-  for (double f : {0.0, 7.0}) {
+  long coherent = 0;
+  // Frame 1 settles pairs from frame 0 (coherence), frame 9 is a jump.
+  for (double f : {0.0, 1.0, 9.0}) {
     SceneStats st;
     s.set_frame(f, &st);
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -218,8 +230,9 @@ TEST(Scene, WithinMatchesBruteForceOnMovingRingMesh) {
       EXPECT_EQ(s.solid(i).R, p.rotation());
     }
     const auto brute = brute_force(s);
-    expect_within_matches_brute(s, 0.2, brute);
+    coherent += expect_within_matches_brute(s, 0.2, brute).pairs_coherent;
   }
+  EXPECT_GT(coherent, 0) << "no pair was settled from its previous frame";
 }
 
 TEST(Scene, ClosestAndNearestMatchSortingEveryPair) {
