@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <unistd.h>
 
 #include "core/case_io.h"
 #include "core/input_error.h"
@@ -41,7 +42,8 @@ TEST(Motion, FramesFollowTheClosedForms) {
 }
 
 std::string write_case(const std::string& motion) {
-  const std::string path = testing::TempDir() + "revdist_motion_test.json";
+  // One file per process: ctest runs the tests of this binary in parallel.
+  const std::string path = testing::TempDir() + "revdist_motion_test_" + std::to_string(getpid()) + ".json";
   std::ofstream(path) << R"({"format": "revdist/1", "solids": {"ball": {"profile": [{"arc": [[0,-1],[1,0],[0,1]]}]}},
     "instances": [{"name": "a", "solid": "ball", "motion": )" << motion << R"(}, {"name": "b", "solid": "ball"}]})";
   return path;

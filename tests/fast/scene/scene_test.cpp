@@ -4,6 +4,7 @@
 // threshold predicate agreeing with the full distance, threads changing
 // nothing, and the broad phase (boxes, tree, refit) never losing a pair.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -31,7 +32,7 @@ using Json = nlohmann::json;
 using PairKey = std::pair<std::int32_t, std::int32_t>;
 
 Case case_from_json(const Json& doc, const std::string& name) {
-  const std::string path = testing::TempDir() + "revdist_scene_test_" + name + ".json";
+  const std::string path = testing::TempDir() + "revdist_scene_test_" + name + std::to_string(getpid()) + ".json";
   std::ofstream(path) << doc.dump();
   Case c = read_case(path, false);
   std::remove(path.c_str());
