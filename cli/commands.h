@@ -8,5 +8,7 @@ void add_circles_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_distance_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_scene_command(CLI::App& app);
+void add_scene_gen_command(CLI::App& app);
 
 }  // namespace revdist::cli

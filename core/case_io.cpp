@@ -229,13 +229,34 @@ std::string read_string(const Json& j, const JsonWhere& where) {
   return j.get<std::string>();
 }
 
+// An instance's motion over scene frames (core/motion.h).
+InstanceMotion read_motion(const Json& j, const JsonWhere& w) {
+  if (!j.is_object()) w.fail("expected an object {velocity?, acceleration?, spin?, wave?}");
+  reject_unknown_members(j, {"velocity", "acceleration", "spin", "wave"}, w);
+  InstanceMotion m;
+  if (j.contains("velocity")) m.velocity = read_vec3(j["velocity"], sub(w, "velocity"));
+  if (j.contains("acceleration")) m.acceleration = read_vec3(j["acceleration"], sub(w, "acceleration"));
+  if (j.contains("spin")) m.spin = read_vec3(j["spin"], sub(w, "spin"));
+  if (j.contains("wave")) {
+    const Json& wv = j["wave"];
+    const JsonWhere ww = sub(w, "wave");
+    if (!wv.is_object()) ww.fail("expected an object {amplitude, period, phase?}");
+    reject_unknown_members(wv, {"amplitude", "period", "phase"}, ww);
+    m.wave_amplitude = read_vec3(require(wv, "amplitude", ww), sub(ww, "amplitude"));
+    m.wave_period = read_number(require(wv, "period", ww), sub(ww, "period"));
+    if (!(m.wave_period > 0)) ww.fail("period " + fmt(m.wave_period) + " <= 0 (frames)");
+    if (wv.contains("phase")) m.wave_phase = read_number(wv["phase"], sub(ww, "phase"));
+  }
+  return m;
+}
+
 Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const std::map<std::string, std::size_t>& solids) {
   if (!j.is_object()) at.fail("expected an instance object {name, solid, rotation?, translation?, time?}");
   Instance inst;
   inst.name = read_string(require(j, "name", at), at / "name");
   if (inst.name.empty()) (at / "name").fail("empty instance name");
   const JsonWhere w{at.file, "instance " + in_quotes(inst.name)};
-  reject_unknown_members(j, {"name", "solid", "rotation", "translation", "time"}, w);
+  reject_unknown_members(j, {"name", "solid", "rotation", "translation", "time", "motion"}, w);
   const std::string solid = read_string(require(j, "solid", w), sub(w, "solid"));
   const auto it = solids.find(solid);
   if (it == solids.end()) w.fail("unknown solid " + in_quotes(solid));
@@ -253,6 +274,7 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
     if (!(n2 >= DBL_MIN) || !std::isfinite(n2)) wq.fail("quaternion too small or too large to normalise (|q|^2 = " + fmt(n2) + ")");
   }
   if (j.contains("translation")) inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));
+  if (j.contains("motion")) inst.motion = read_motion(j["motion"], sub(w, "motion"));
   const SolidDef& s = c.solids[inst.solid];
   if (j.contains("time")) {
     inst.time = read_number(j["time"], sub(w, "time"));
@@ -294,7 +316,7 @@ Profile profile_at(const SolidDef& solid, double time) {
   return out;
 }
 
-Case read_case(const std::string& path) {
+Case read_case(const std::string& path, bool all_pairs_when_absent) {
   const Json doc = read_json_file(path);
   const JsonWhere top{path, ""};
   if (!doc.is_object()) top.fail("expected a JSON object");
@@ -345,7 +367,7 @@ Case read_case(const std::string& path) {
       if (ab[0] == ab[1]) w.fail("pairs instance " + in_quotes(c.instances[ab[0]].name) + " with itself");
       c.queries.emplace_back(ab[0], ab[1]);
     }
-  } else {
+  } else if (all_pairs_when_absent) {
     for (std::size_t i = 0; i < c.instances.size(); ++i)
       for (std::size_t k = i + 1; k < c.instances.size(); ++k) c.queries.emplace_back(i, k);
   }

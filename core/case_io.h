@@ -27,7 +27,10 @@ namespace revdist {
 // almost certainly a mistake about which solid is keyframed). Absent "queries" means all
 // pairs i < j in instance order; absent "instances" is allowed (`revdist fit` needs only
 // solids). Solids are stored in the order of their names (JSON objects are unordered).
-Case read_case(const std::string& path);
+// Scenes of 10^4 instances pass all_pairs_when_absent = false: their broad phase finds
+// the pairs, and n^2/2 listed queries would not fit in memory.
+// An instance's optional "motion" (core/motion.h) moves it over `revdist scene` frames.
+Case read_case(const std::string& path, bool all_pairs_when_absent = true);
 
 // The profile of a solid at keyframe time s (clamped to [0, K-1]): control points and
 // weights blended linearly between keyframes floor(s) and ceil(s) (missing weights count

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/motion.h"
 #include "core/pose.h"
 #include "core/vec.h"
 
@@ -48,6 +49,7 @@ struct Instance {
   std::size_t solid = 0;  // index into Case::solids
   Pose pose;
   double time = 0.0;      // keyframe time s in [0, K-1]
+  InstanceMotion motion;  // frames of `revdist scene` (core/motion.h); frame 0 is `pose`
 };
 
 struct Case {

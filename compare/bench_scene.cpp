@@ -1,0 +1,133 @@
+// Scene benchmarks (issue 8): the ring mesh of the paper's Figure 1 in motion.
+//  - BM_SceneWithin/N/T: one frame (poses, boxes, broad-phase refit, all pairs
+//    within d = 0.3) of an N-ring mesh on T threads; counters give the median
+//    and p90 per frame of the wall time and of the CPU time summed over the
+//    threads (per-thread clocks), and the pairs found and tested.
+//  - BM_Threshold/d: every broad-phase candidate pair of a 1000-ring mesh,
+//    once as the predicate "closer than d?" and once as a full distance
+//    (tol 1e-6); counters: per-pair CPU medians of both and their ratio, over
+//    the pairs whose answer is clear (the full bracket is at least 10% of d away from d).
+// REVDIST_SEED overrides the motion seed.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "compare/scene_gen.h"
+#include "core/case_io.h"
+#include "fast/scene/parallel.h"
+#include "fast/scene/scene.h"
+
+namespace {
+
+using namespace revdist;
+
+std::uint64_t seed() {
+  const char* s = std::getenv("REVDIST_SEED");
+  return s ? std::strtoull(s, nullptr, 10) : 8u;
+}
+
+Case ring_case(int rings) {
+  const std::string path = "/tmp/revdist_bench_scene_" + std::to_string(rings) + ".json";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  const std::string text = ring_mesh_case(rings, seed()).dump();
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+  Case c = read_case(path, false);
+  std::remove(path.c_str());
+  return c;
+}
+
+double quantile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5)];
+}
+
+void BM_SceneWithin(benchmark::State& state) {
+  const Case c = ring_case(static_cast<int>(state.range(0)));
+  SceneOptions o;
+  o.threads = static_cast<int>(state.range(1));
+  Scene scene(c, o);
+  std::vector<double> wall, cpu;
+  long frame = 0, found = 0, tested = 0;
+  for (auto _ : state) {
+    SceneStats st;
+    scene.set_frame(static_cast<double>(frame++ % 24), &st);
+    const std::vector<ScenePair> pairs = scene.within(0.3, &st);
+    benchmark::DoNotOptimize(pairs.data());
+    wall.push_back(st.time_ms);
+    cpu.push_back(st.cpu_ms);
+    found += static_cast<long>(pairs.size());
+    tested += st.pairs_tested;
+  }
+  state.counters["instances"] = static_cast<double>(scene.size());
+  state.counters["wall_ms_median"] = quantile(wall, 0.5);
+  state.counters["wall_ms_p90"] = quantile(wall, 0.9);
+  state.counters["cpu_ms_median"] = quantile(cpu, 0.5);
+  state.counters["cpu_ms_p90"] = quantile(cpu, 0.9);
+  state.counters["pairs_within"] = static_cast<double>(found) / static_cast<double>(frame);
+  state.counters["pairs_tested"] = static_cast<double>(tested) / static_cast<double>(frame);
+}
+
+void BM_Threshold(benchmark::State& state) {
+  const double d = static_cast<double>(state.range(0)) / 100.0;
+  const Case c = ring_case(1000);
+  Scene scene(c, SceneOptions{});
+  SceneStats st;
+  scene.set_frame(5.0, &st);
+  std::vector<std::pair<std::int32_t, std::int32_t>> cand;
+  scene.broad_phase().pairs_within(d, &cand);
+  std::sort(cand.begin(), cand.end());
+  std::vector<double> t_thr, t_full, ratio;
+  long clear = 0, agree = 0;
+  for (auto _ : state) {
+    t_thr.clear();
+    t_full.clear();
+    ratio.clear();
+    clear = agree = 0;
+    for (const auto& [a, b] : cand) {
+      DistanceOptions full, thr;
+      thr.threshold = d;
+      double t0 = thread_cpu_seconds();
+      const SolidDistanceResult rt = solid_distance(scene.solid(a), scene.solid(b), thr);
+      const double tt = thread_cpu_seconds() - t0;
+      t0 = thread_cpu_seconds();
+      const SolidDistanceResult rf = solid_distance(scene.solid(a), scene.solid(b), full);
+      const double tf = thread_cpu_seconds() - t0;
+      if (!(rf.lower > 1.1 * d || rf.upper < 0.9 * d)) continue;
+      ++clear;
+      agree += (rt.upper <= d) == (rf.upper <= d);
+      t_thr.push_back(1e6 * tt);
+      t_full.push_back(1e6 * tf);
+      ratio.push_back(tf / std::max(tt, 1e-9));
+    }
+  }
+  state.counters["pairs_clear"] = static_cast<double>(clear);
+  state.counters["agree"] = static_cast<double>(agree);
+  state.counters["threshold_us_median"] = quantile(t_thr, 0.5);
+  state.counters["threshold_us_p90"] = quantile(t_thr, 0.9);
+  state.counters["full_us_median"] = quantile(t_full, 0.5);
+  state.counters["full_us_p90"] = quantile(t_full, 0.9);
+  state.counters["speedup_median"] = quantile(ratio, 0.5);
+  state.counters["speedup_p10"] = quantile(ratio, 0.1);
+}
+
+}  // namespace
+
+BENCHMARK(BM_SceneWithin)->Args({1000, 1})->Args({1000, 2})->Args({10000, 1})->Args({10000, 2})
+    ->Unit(benchmark::kMillisecond)->Iterations(8);
+BENCHMARK(BM_Threshold)->Arg(10)->Arg(20)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("build_type", REVDIST_BUILD_TYPE);
+  benchmark::AddCustomContext("build_flags", REVDIST_BUILD_FLAGS);
+  benchmark::AddCustomContext("seed", std::to_string(seed()));
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+}

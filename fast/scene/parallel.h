@@ -1,0 +1,19 @@
+// Work sharing for scene queries: std::thread workers take indices from a
+// shared counter; each index writes only its own slot, so the answers do not
+// depend on the number of threads or on scheduling.
+#pragma once
+#include <cstddef>
+#include <functional>
+
+namespace revdist {
+
+// Calls fn(i) for every i in [0, n) on `threads` threads (the caller's thread
+// is one of them). Returns the CPU seconds the other workers used, summed
+// (CLOCK_THREAD_CPUTIME_ID per worker); the caller measures its own thread. The first exception thrown by fn is
+// rethrown here once every worker has stopped.
+double parallel_for(std::size_t n, int threads, const std::function<void(std::size_t)>& fn);
+
+// CPU seconds used so far by the calling thread.
+double thread_cpu_seconds();
+
+}  // namespace revdist

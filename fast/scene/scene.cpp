@@ -1,0 +1,404 @@
+// Scene queries: world boxes from each shape's tree capsules, the broad phase,
+// and the narrow phase in deterministic batches over threads.
+#include "fast/scene/scene.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "fast/scene/parallel.h"
+
+namespace revdist {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using PairKey = std::pair<std::int32_t, std::int32_t>;
+
+// Wall and CPU time of one scene step, added to the stats when it ends.
+class StepTimer {
+ public:
+  explicit StepTimer(SceneStats* st) : st_(st), wall0_(std::chrono::steady_clock::now()), cpu0_(thread_cpu_seconds()) {}
+  void add_worker_cpu(double seconds) { workers_ += seconds; }
+  ~StepTimer() {
+    st_->time_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0_).count();
+    st_->cpu_ms += 1e3 * (thread_cpu_seconds() - cpu0_ + workers_);
+  }
+
+ private:
+  SceneStats* st_;
+  std::chrono::steady_clock::time_point wall0_;
+  double cpu0_, workers_ = 0.0;
+};
+
+// Orders answers for k closest: smallest upper first, then instance indices.
+bool closer(const ScenePair& x, const ScenePair& y) {
+  if (x.result.upper != y.result.upper) return x.result.upper < y.result.upper;
+  return x.a != y.a ? x.a < y.a : x.b < y.b;
+}
+
+// Leaf pairs of the broad phase in non-decreasing box gap: all pairs of the scene.
+class AllPairsStream {
+ public:
+  explicit AllPairsStream(const AabbTree& t) : t_(t) {
+    if (!t.nodes().empty()) q_.push({0.0, 0, 0, true});
+  }
+  // The next pair with box gap <= limit, if any.
+  bool next(double limit, std::int32_t* a, std::int32_t* b) {
+    const auto& n = t_.nodes();
+    while (!q_.empty() && q_.top().lb <= limit) {
+      const Entry e = q_.top();
+      q_.pop();
+      const auto& na = n[e.x];
+      const auto& nb = n[e.y];
+      if (e.self) {
+        if (na.leaf()) continue;
+        q_.push({0.0, na.left, na.left, true});
+        q_.push({0.0, na.right, na.right, true});
+        push(na.left, na.right);
+      } else if (na.leaf() && nb.leaf()) {
+        *a = std::min(na.item, nb.item);
+        *b = std::max(na.item, nb.item);
+        return true;
+      } else if (nb.leaf() || (!na.leaf() && na.box.half_area() >= nb.box.half_area())) {
+        push(na.left, e.y);
+        push(na.right, e.y);
+      } else {
+        push(e.x, nb.left);
+        push(e.x, nb.right);
+      }
+    }
+    return false;
+  }
+
+ private:
+  struct Entry {
+    double lb;
+    std::int32_t x, y;
+    bool self;  // pairs inside subtree x (then y == x)
+    bool operator<(const Entry& o) const { return lb > o.lb; }
+  };
+  void push(std::int32_t x, std::int32_t y) { q_.push({t_.nodes()[x].box.gap(t_.nodes()[y].box), x, y, false}); }
+  const AabbTree& t_;
+  std::priority_queue<Entry> q_;
+};
+
+// Instances in non-decreasing box gap to instance `query`.
+class NeighbourStream {
+ public:
+  NeighbourStream(const AabbTree& t, const Aabb& box, std::int32_t query) : t_(t), box_(box), query_(query) {
+    if (!t.nodes().empty()) q_.push({t.nodes()[0].box.gap(box), 0});
+  }
+  bool next(double limit, std::int32_t* a, std::int32_t* b) {
+    const auto& n = t_.nodes();
+    while (!q_.empty() && q_.top().lb <= limit) {
+      const Entry e = q_.top();
+      q_.pop();
+      const auto& nd = n[e.node];
+      if (nd.leaf()) {
+        if (nd.item == query_) continue;
+        *a = query_;
+        *b = nd.item;
+        return true;
+      }
+      q_.push({n[nd.left].box.gap(box_), nd.left});
+      q_.push({n[nd.right].box.gap(box_), nd.right});
+    }
+    return false;
+  }
+
+ private:
+  struct Entry {
+    double lb;
+    std::int32_t node;
+    bool operator<(const Entry& o) const { return lb > o.lb; }
+  };
+  const AabbTree& t_;
+  Aabb box_;
+  std::int32_t query_;
+  std::priority_queue<Entry> q_;
+};
+
+}  // namespace
+
+void SceneStats::add(const SceneStats& o) {
+  instances = std::max(instances, o.instances);
+  pairs_total += o.pairs_total;
+  pairs_tested += o.pairs_tested;
+  pairs_culled += o.pairs_culled;
+  pairs_threshold += o.pairs_threshold;
+  pairs_coherent += o.pairs_coherent;
+  narrow_calls += o.narrow_calls;
+  node_pairs += o.node_pairs;
+  nodes_built += o.nodes_built;
+  broad_nodes = std::max(broad_nodes, o.broad_nodes);
+  broad_rebuilt = broad_rebuilt || o.broad_rebuilt;
+  time_ms += o.time_ms;
+  cpu_ms += o.cpu_ms;
+}
+
+Scene::Scene(const Case& c, const SceneOptions& options) : options_(options), model_(build_case_model(c, options.eps)) {
+  for (const Instance& inst : c.instances) {
+    pose0_.push_back(inst.pose);
+    motion_.push_back(inst.motion);
+  }
+  // Per shape, a frontier of at most 32 tree capsules: tighter boxes than the
+  // root's capsule alone, and still cheap to move every frame.
+  for (const auto& shape : model_.shapes) {
+    const auto& nodes = shape->tree.nodes;
+    unreported_nodes_ += static_cast<long>(nodes.size());
+    std::vector<std::int32_t> level;
+    if (!nodes.empty()) level.push_back(0);
+    for (;;) {
+      std::vector<std::int32_t> next;
+      for (std::int32_t k : level) {
+        if (nodes[k].leaf()) next.push_back(k);
+        else next.insert(next.end(), {nodes[k].child, nodes[k].child + 1});
+      }
+      if (next.size() > 32 || next.size() == level.size()) break;
+      level = std::move(next);
+    }
+    std::vector<LocalBound> b;
+    double reach = 0.0;
+    for (std::int32_t k : level) {
+      b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
+      reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
+    }
+    reach_.push_back(reach);
+    bounds_.push_back(std::move(b));
+  }
+  boxes_.resize(size());
+  SceneStats ignored;
+  set_frame(0.0, &ignored);
+  // The trees were built for frame 0: the caller's first set_frame reports them.
+  unreported_nodes_ = 0;
+  for (const auto& shape : model_.shapes) unreported_nodes_ += static_cast<long>(shape->tree.nodes.size());
+}
+
+// The box of a rotated capsule: each end circle (radius |r| about the axis at
+// height z) spans |r| sqrt(1 - a_i^2) along world axis i; the cone between
+// them lies in the hull of the two circles; the capsule adds its radius.
+Aabb Scene::world_box(std::size_t i) const {
+  const PosedSolid& s = model_.instances[i];
+  const Vec3 axis = s.R.col(2).normalized();
+  const Vec3 spread = (Vec3::Ones() - axis.cwiseProduct(axis)).cwiseMax(0.0).cwiseSqrt();
+  Aabb box{Vec3::Constant(kInf), Vec3::Constant(-kInf)};
+  double size = 0.0;
+  for (const LocalBound& c : bounds_[model_.shape_of[i]]) {
+    for (const Vec2& p : {c.a, c.b}) {
+      const Vec3 centre = s.t + p.y() * axis;
+      const Vec3 half = Vec3::Constant(c.radius) + std::abs(p.x()) * spread;
+      box.lo = box.lo.cwiseMin(centre - half);
+      box.hi = box.hi.cwiseMax(centre + half);
+      size = std::max(size, p.norm() + c.radius);
+    }
+  }
+  // Rounding of the pose and of the sums above: a few ulps of the coordinates involved.
+  const double margin = 64 * DBL_EPSILON * (s.t.cwiseAbs().maxCoeff() + size);
+  box.lo.array() -= margin;
+  box.hi.array() += margin;
+  return box;
+}
+
+void Scene::set_frame(double f, SceneStats* st) {
+  StepTimer timer(st);
+  st->instances = static_cast<long>(size());
+  st->nodes_built += unreported_nodes_;
+  unreported_nodes_ = 0;
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (f != 0 && !motion_[i].moving()) {
+      boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
+      continue;
+    }
+    const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
+    model_.instances[i].R = p.rotation();
+    model_.instances[i].t = p.translation;
+    boxes_[i] = world_box(i);
+  }
+  st->broad_rebuilt = !tree_.refit(boxes_);
+  st->broad_nodes = static_cast<long>(tree_.size());
+}
+
+SolidDistanceResult Scene::query(std::int32_t a, std::int32_t b, double threshold) const {
+  DistanceOptions o = options_.distance;
+  o.threshold = threshold;
+  return solid_distance(model_.instances[a], model_.instances[b], o);
+}
+
+// A point p of a (|p| <= reach) sits at X_ba p in b's frame. Between the
+// remembered relative pose and the current one it moved by at most
+// |dR|_F reach + |dt| (Frobenius bounds the spectral norm), so the distance
+// is at least the old lower bound minus that; the remembered witness points,
+// genuine surface points, at the current poses give an upper bound.
+bool Scene::settle_from_memory(const PairMemory& m, double d, ScenePair* p) const {
+  const PosedSolid& A = model_.instances[m.a];
+  const PosedSolid& B = model_.instances[m.b];
+  const Mat3 R_ba = B.R.transpose() * A.R;
+  const Vec3 t_ba = B.R.transpose() * (A.t - B.t);
+  const double reach = reach_[model_.shape_of[m.a]];
+  // Rounding of the products above: a few hundred ulps of the coordinates involved.
+  const double round = 256 * DBL_EPSILON * (reach + t_ba.norm() + m.t_ba.norm() + reach_[model_.shape_of[m.b]]);
+  const double moved = (R_ba - m.R_ba).norm() * reach + (t_ba - m.t_ba).norm() + round;
+  const double lower = std::max(0.0, m.lower - moved);
+  const Vec3 x = A.R * m.p_a + A.t, y = B.R * m.p_b + B.t;
+  const double upper = (x - y).norm();
+  if (!(upper <= d || lower > d)) return false;
+  SolidDistanceResult& r = p->result;
+  r.lower = std::min(lower, upper);
+  r.upper = upper;
+  r.distance = 0.5 * (r.lower + r.upper);
+  r.point_a = x;
+  r.point_b = y;
+  r.decided = true;
+  r.converged = upper - r.lower <= options_.distance.tol;
+  r.reason = "settled from the previous frame";
+  return true;
+}
+
+std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
+  StepTimer timer(st);
+  const long n = static_cast<long>(size());
+  std::vector<std::pair<std::int32_t, std::int32_t>> cand;
+  tree_.pairs_within(d, &cand);
+  std::sort(cand.begin(), cand.end());
+  // The remembered pairs, matched to the candidates (both sorted).
+  std::vector<const PairMemory*> old(cand.size(), nullptr);
+  if (options_.coherence) {
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < cand.size(); ++k) {
+      while (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) < cand[k]) ++j;
+      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid) old[k] = &memory_[j];
+    }
+  }
+  std::vector<ScenePair> all(cand.size());
+  std::vector<PairMemory> memory(cand.size());
+  std::vector<char> coherent(cand.size(), 0);
+  timer.add_worker_cpu(parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
+    ScenePair& p = all[k];
+    p.a = cand[k].first;
+    p.b = cand[k].second;
+    if (old[k] && settle_from_memory(*old[k], d, &p)) {
+      coherent[k] = 1;
+      memory[k] = *old[k];  // keep the reference pose: bounds do not loosen frame by frame
+    } else {
+      p.result = query(p.a, p.b, d);
+      const PosedSolid& A = model_.instances[p.a];
+      const PosedSolid& B = model_.instances[p.b];
+      PairMemory& m = memory[k];
+      m.a = p.a;
+      m.b = p.b;
+      m.R_ba = B.R.transpose() * A.R;
+      m.t_ba = B.R.transpose() * (A.t - B.t);
+      m.lower = p.result.lower;
+      m.p_a = A.R.transpose() * (p.result.point_a - A.t);
+      m.p_b = B.R.transpose() * (p.result.point_b - B.t);
+      m.valid = !p.result.overlap && std::isfinite(p.result.upper);
+    }
+    p.within = p.result.upper <= d;
+  }));
+  if (options_.coherence) memory_ = std::move(memory);
+  std::vector<ScenePair> out;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    ScenePair& p = all[k];
+    if (coherent[k]) {
+      ++st->pairs_coherent;
+    } else {
+      ++st->narrow_calls;
+      st->node_pairs += p.result.stats.node_pairs;
+      if (p.result.decided) ++st->pairs_threshold;
+    }
+    if (!(p.result.lower > d)) out.push_back(std::move(p));
+  }
+  st->pairs_total += n * (n - 1) / 2;
+  st->pairs_tested += static_cast<long>(cand.size());
+  st->pairs_culled += n * (n - 1) / 2 - static_cast<long>(cand.size());
+  return out;
+}
+
+// Best-first over a stream of pairs in non-decreasing box gap. Batches have a
+// fixed composition (the first k pairs, then 32 at a time) and the cutoff T
+// (the k-th smallest upper so far) changes only between batches, so threads
+// change nothing but the time. A pair is asked "lower > T?" first; if not
+// settled so, its full bracket is used (computed again without the threshold
+// when the predicate stopped early), so every reported bracket is the one a
+// plain solid_distance call gives.
+template <class Stream>
+std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* st) const {
+  std::vector<ScenePair> best;
+  if (k == 0) return best;
+  double cutoff = kInf;
+  std::size_t batch_size = k;
+  std::vector<ScenePair> batch;
+  std::vector<char> rerun;
+  for (;;) {
+    batch.clear();
+    std::int32_t a, b;
+    while (batch.size() < batch_size && stream.next(cutoff, &a, &b)) {
+      batch.emplace_back();
+      batch.back().a = a;
+      batch.back().b = b;
+    }
+    if (batch.empty()) break;
+    rerun.assign(batch.size(), 0);
+    const double t = cutoff;
+    st->cpu_ms += 1e3 * parallel_for(batch.size(), options_.threads, [&](std::size_t i) {
+      ScenePair& p = batch[i];
+      p.result = query(p.a, p.b, std::isfinite(t) ? t : kNaN);
+      if (p.result.decided && !(p.result.lower > t)) {
+        p.result = query(p.a, p.b, kNaN);
+        rerun[i] = 1;
+      }
+    });
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      ScenePair& p = batch[i];
+      ++st->pairs_tested;
+      st->narrow_calls += 1 + rerun[i];
+      st->node_pairs += p.result.stats.node_pairs;
+      if (p.result.decided && p.result.lower > t) {
+        ++st->pairs_threshold;
+        continue;
+      }
+      p.within = true;
+      best.insert(std::upper_bound(best.begin(), best.end(), p, closer), std::move(p));
+      if (best.size() > k) best.pop_back();
+    }
+    if (best.size() == k) cutoff = best.back().result.upper;
+    batch_size = 32;
+  }
+  for (ScenePair& p : best) p.within = false;  // `within` belongs to within(d)
+  return best;
+}
+
+std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) const {
+  const long tested0 = st->pairs_tested;
+  std::vector<ScenePair> out;
+  {
+    StepTimer timer(st);
+    AllPairsStream stream(tree_);
+    out = best_k(stream, k, st);
+  }
+  const long n = static_cast<long>(size());
+  st->pairs_total += n * (n - 1) / 2;
+  st->pairs_culled += n * (n - 1) / 2 - (st->pairs_tested - tested0);
+  return out;
+}
+
+std::vector<ScenePair> Scene::nearest(std::size_t i, std::size_t k, SceneStats* st) const {
+  const long tested0 = st->pairs_tested;
+  std::vector<ScenePair> out;
+  {
+    StepTimer timer(st);
+    NeighbourStream stream(tree_, boxes_[i], static_cast<std::int32_t>(i));
+    out = best_k(stream, k, st);
+  }
+  const long n = static_cast<long>(size());
+  st->pairs_total += n - 1;
+  st->pairs_culled += n - 1 - (st->pairs_tested - tested0);
+  return out;
+}
+
+}  // namespace revdist

@@ -1,0 +1,112 @@
+// Scene queries over many posed solids (issue 8): all pairs closer than d, the
+// k closest pairs, the nearest neighbours of one instance, the minimum over the
+// scene. A broad phase over world boxes (fast/scene/aabb_tree.h) ensures far
+// pairs are never touched; the narrow phase is solid_distance
+// (fast/solid_distance.h), as a threshold predicate where the question allows.
+// Answers do not depend on the number of threads.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/profile.h"
+#include "fast/case_model.h"
+#include "fast/scene/aabb_tree.h"
+#include "fast/solid_distance.h"
+
+namespace revdist {
+
+struct SceneOptions {
+  double eps = 1e-5;          // biarc bound of every shape's tree
+  DistanceOptions distance;   // tol, rel_tol, budgets (threshold is the queries' own)
+  int threads = 1;
+  // Frame coherence of within(d) at the scene level (the narrow phase is not
+  // touched): a pair's last bracket and witness points are kept with the
+  // pair's relative pose; on a later frame the witness points at the new poses
+  // give an upper bound and the old lower bound minus the most any point can
+  // have moved relative to the other solid a lower bound, which settles the
+  // pair without a narrow-phase call when either decides "within d?".
+  bool coherence = true;
+};
+
+struct ScenePair {
+  std::int32_t a = 0, b = 0;  // instance indices, a < b (nearest: a is the query instance)
+  SolidDistanceResult result;
+  // within(d): upper <= d proven. A pair whose bracket met tol while still
+  // straddling d is reported with within = false (it is not proven farther).
+  bool within = false;
+};
+
+struct SceneStats {
+  long instances = 0;
+  long pairs_total = 0;      // n (n - 1) / 2
+  long pairs_tested = 0;     // pairs the narrow phase touched
+  long pairs_culled = 0;     // never touched (pairs_total - pairs_tested)
+  long pairs_threshold = 0;  // settled by the threshold predicate before the bracket met tol
+  long pairs_coherent = 0;   // settled from the pair's previous frame, without a narrow-phase call
+  long narrow_calls = 0;     // solid_distance calls (k closest reruns a pair that enters the top k)
+  long node_pairs = 0;       // narrow-phase work, summed
+  long nodes_built = 0;      // biarc tree nodes built for this frame (trees are cached per shape)
+  long broad_nodes = 0;      // nodes of the broad-phase tree
+  bool broad_rebuilt = false;  // the broad phase was rebuilt rather than refitted this frame
+  double time_ms = 0.0;      // wall time of the frame (poses, boxes, broad and narrow phase)
+  double cpu_ms = 0.0;       // CPU time of the same, summed over threads (per-thread clocks)
+
+  void add(const SceneStats& o);  // sums counters and times (for totals over frames)
+};
+
+class Scene {
+ public:
+  // Builds one biarc tree per distinct (solid, time) and poses the instances at frame 0.
+  Scene(const Case& c, const SceneOptions& options);
+
+  std::size_t size() const { return model_.instances.size(); }
+  const PosedSolid& solid(std::size_t i) const { return model_.instances[i]; }
+  const Aabb& box(std::size_t i) const { return boxes_[i]; }
+  const AabbTree& broad_phase() const { return tree_; }
+
+  // Poses every instance at frame f (core/motion.h), recomputes its box and
+  // refits the broad phase (rebuilt when refitting has loosened it). Adds to st.
+  void set_frame(double f, SceneStats* st);
+
+  // Every pair whose distance is <= d (within = true) or not proven > d, sorted by (a, b).
+  // With options.coherence, a pair may be settled from its bracket of an earlier
+  // call (see SceneOptions), so brackets, not decisions, depend on the history.
+  std::vector<ScenePair> within(double d, SceneStats* st);
+  // The k pairs of smallest upper bound (full brackets), sorted by (upper, a, b).
+  std::vector<ScenePair> closest(std::size_t k, SceneStats* st) const;
+  // The k instances nearest to instance i (a = i), sorted by (upper, b).
+  std::vector<ScenePair> nearest(std::size_t i, std::size_t k, SceneStats* st) const;
+
+ private:
+  struct LocalBound {  // a tree node's capsule: segment (r, z) - (r, z) and radius
+    Vec2 a, b;
+    double radius;
+  };
+  // What within(d) keeps of a pair for the next frame (SceneOptions::coherence).
+  struct PairMemory {
+    std::int32_t a = -1, b = -1;
+    Mat3 R_ba;  // pose of a in b's frame when the bracket was computed
+    Vec3 t_ba;
+    double lower = 0.0;
+    Vec3 p_a, p_b;  // witness points in a's and b's local frames
+    bool valid = false;  // a bracket with witnesses, no overlap (overlaps are recomputed)
+  };
+  bool settle_from_memory(const PairMemory& m, double d, ScenePair* p) const;
+  Aabb world_box(std::size_t i) const;
+  SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
+  template <class Stream>
+  std::vector<ScenePair> best_k(Stream& stream, std::size_t k, SceneStats* st) const;
+
+  SceneOptions options_;
+  std::vector<Pose> pose0_;      // per instance, frame 0
+  std::vector<InstanceMotion> motion_;  // per instance
+  CaseModel model_;
+  std::vector<std::vector<LocalBound>> bounds_;  // per shape
+  std::vector<Aabb> boxes_;                      // per instance, world
+  std::vector<double> reach_;                    // per shape: max |local point| of the solid
+  std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
+  AabbTree tree_;
+  long unreported_nodes_ = 0;
+};
+
+}  // namespace revdist

@@ -1,0 +1,96 @@
+// End-to-end checks of `revdist scene` and `revdist scene-gen`: the JSON keys
+// of SPEC section 5, frames and threads, and exit status 2 with one line on bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CommandRun run(const std::string& args) {
+  static int calls = 0;
+  const std::string err_file = testing::TempDir() + "revdist_scene_cli_stderr_" + std::to_string(getpid()) + "_" +
+                               std::to_string(++calls) + ".txt";
+  const std::string cmd = std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file;
+  CommandRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err_file);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  std::remove(err_file.c_str());
+  return r;
+}
+
+std::string generated(const std::string& kind, int n) {
+  const std::string path = testing::TempDir() + "revdist_scene_cli_" + kind + std::to_string(getpid()) + ".json";
+  const CommandRun g = run("scene-gen " + kind + " --n " + std::to_string(n) + " --seed 4 --out " + path);
+  EXPECT_EQ(g.status, 0) << g.err;
+  return path;
+}
+
+TEST(SceneCli, WithinJsonHasSpecKeysAndFrames) {
+  const std::string path = generated("rings", 40);
+  const CommandRun r = run("scene " + path + " --within 0.3 --frames 3 --threads 2 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "revdist-scene/1");
+  ASSERT_TRUE(j["pairs"].is_array());
+  ASSERT_FALSE(j["pairs"].empty());
+  for (const auto& p : j["pairs"]) {
+    for (const char* k : {"a", "b", "lower", "upper", "overlap", "within"}) EXPECT_TRUE(p.contains(k)) << k;
+    EXPECT_LE(p["lower"].get<double>(), 0.3);
+    EXPECT_LE(p["lower"].get<double>(), p["upper"].get<double>());
+  }
+  for (const char* k : {"pairs_tested", "pairs_culled", "nodes_built", "time_ms"}) EXPECT_TRUE(j["stats"].contains(k)) << k;
+  EXPECT_GT(j["stats"]["pairs_culled"].get<long>(), 0);
+  EXPECT_GT(j["stats"]["nodes_built"].get<long>(), 0);
+  ASSERT_EQ(j["frames"].size(), 3u);
+  // Trees are cached per shape: later frames build none.
+  EXPECT_EQ(j["frames"][2]["stats"]["nodes_built"].get<long>(), 0);
+  std::remove(path.c_str());
+}
+
+TEST(SceneCli, ClosestAndNearestOnAShelf) {
+  const std::string path = generated("shelf", 30);
+  const CommandRun c = run("scene " + path + " --closest 3 --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const nlohmann::json j = nlohmann::json::parse(c.out);
+  ASSERT_EQ(j["pairs"].size(), 3u);
+  EXPECT_LE(j["pairs"][0]["upper"].get<double>(), j["pairs"][2]["upper"].get<double>());
+  const CommandRun n = run("scene " + path + " --nearest board0 --closest 2");
+  EXPECT_EQ(n.status, 0) << n.err;
+  EXPECT_NE(n.out.find("board0"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+TEST(SceneCli, BadInputExitsTwoWithOneLine) {
+  const std::string path = generated("rings", 20);
+  for (const char* args : {"--within -1", "--within 0.1 --closest 2", "--nearest nobody", "--threads 0",
+                                  "--frames 0", "--eps 0"}) {
+    const CommandRun r = run("scene " + path + " " + std::string(args));
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  const CommandRun missing = run("scene /nonexistent/scene.json");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos);
+  EXPECT_EQ(run("scene-gen cubes").status, 2);
+  std::remove(path.c_str());
+}
+
+}  // namespace

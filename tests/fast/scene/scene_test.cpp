@@ -1,0 +1,291 @@
+// Scene queries (fast/scene/) against the all-pairs brute force: every pair
+// within d found and none extra, brackets meeting the full distance's, the k
+// closest pairs and nearest neighbours identical to sorting every pair, the
+// threshold predicate agreeing with the full distance, threads changing
+// nothing, and the broad phase (boxes, tree, refit) never losing a pair.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "compare/random_geometry.h"
+#include "compare/scene_gen.h"
+#include "core/case_io.h"
+#include "core/curve_eval.h"
+#include "fast/scene/aabb_tree.h"
+#include "fast/scene/scene.h"
+#include "../solid_test_util.h"
+
+namespace revdist {
+namespace {
+
+using solid_test::test_seed;
+using Json = nlohmann::json;
+using PairKey = std::pair<std::int32_t, std::int32_t>;
+
+Case case_from_json(const Json& doc, const std::string& name) {
+  const std::string path = testing::TempDir() + "revdist_scene_test_" + name + std::to_string(getpid()) + ".json";
+  std::ofstream(path) << doc.dump();
+  Case c = read_case(path, false);
+  std::remove(path.c_str());
+  return c;
+}
+
+// Mixed solids (the shelf's) at random poses in a box: overlaps, containment,
+// near and far pairs all occur.
+Case random_scene(std::uint64_t seed, int n, double spread) {
+  Json doc = shelf_case(4, seed);
+  Json inst = Json::array();
+  Rng rng(seed);
+  std::vector<std::string> kinds;
+  for (auto it = doc["solids"].begin(); it != doc["solids"].end(); ++it) kinds.push_back(it.key());
+  for (int i = 0; i < n; ++i) {
+    const Vec3 t = rng.box(spread);
+    const Vec3 axis = rng.unit();
+    const double angle = rng.uniform(0, M_PI);
+    Json m{{"velocity", {rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05), 0}},
+           {"spin", {rng.uniform(-0.1, 0.1), 0, rng.uniform(-0.1, 0.1)}}};
+    inst.push_back({{"name", "s" + std::to_string(i)},
+                    {"solid", kinds[rng.gen()() % kinds.size()]},
+                    {"rotation", {std::cos(angle / 2), std::sin(angle / 2) * axis.x(), std::sin(angle / 2) * axis.y(),
+                                  std::sin(angle / 2) * axis.z()}},
+                    {"translation", {t.x(), t.y(), t.z()}},
+                    {"motion", m}});
+  }
+  doc["instances"] = inst;
+  return case_from_json(doc, "random" + std::to_string(seed));
+}
+
+// Every pair's full distance (no threshold), the reference of every check.
+std::map<PairKey, SolidDistanceResult> brute_force(const Scene& s) {
+  std::map<PairKey, SolidDistanceResult> out;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j)
+      out[{static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)}] = solid_distance(s.solid(i), s.solid(j));
+  return out;
+}
+
+double scene_scale(const Scene& s) {
+  double m = 1.0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    m = std::max({m, s.box(i).lo.cwiseAbs().maxCoeff(), s.box(i).hi.cwiseAbs().maxCoeff()});
+  return m;
+}
+
+SceneStats expect_within_matches_brute(Scene& s, double d, const std::map<PairKey, SolidDistanceResult>& brute) {
+  SceneStats st;
+  const std::vector<ScenePair> found = s.within(d, &st);
+  std::map<PairKey, const ScenePair*> got;
+  for (const ScenePair& p : found) {
+    EXPECT_LT(p.a, p.b);
+    EXPECT_TRUE(got.emplace(PairKey{p.a, p.b}, &p).second) << "pair reported twice";
+  }
+  EXPECT_TRUE(std::is_sorted(found.begin(), found.end(),
+                             [](const ScenePair& x, const ScenePair& y) { return PairKey{x.a, x.b} < PairKey{y.a, y.b}; }));
+  // Both brackets hold the same distance; each side carries rounding of a few
+  // hundred ulps of the world coordinates (solid_distance's own allowance).
+  const double slack = 1024 * DBL_EPSILON * scene_scale(s);
+  long within = 0, clear = 0;
+  for (const auto& [key, full] : brute) {
+    const auto it = got.find(key);
+    const bool reported = it != got.end();
+    if (full.upper <= d) {
+      ++within;
+      EXPECT_TRUE(reported) << "pair " << key.first << "," << key.second << " at " << full.upper << " <= " << d << " missed";
+    }
+    if (full.lower > d) {
+      EXPECT_FALSE(reported) << "pair " << key.first << "," << key.second << " at " << full.lower << " > " << d;
+    }
+    if (!reported) continue;
+    const SolidDistanceResult& r = it->second->result;
+    EXPECT_LE(std::max(r.lower, full.lower), std::min(r.upper, full.upper) + slack)
+        << "brackets of " << key.first << "," << key.second << " do not meet";
+    EXPECT_EQ(it->second->within, r.upper <= d);
+    // The predicate's answer is the full distance's whenever that one is clear.
+    if (full.upper <= d || full.lower > d) {
+      ++clear;
+      EXPECT_EQ(it->second->within, full.upper <= d) << "threshold and full distance disagree on " << key.first << ","
+                                                     << key.second;
+    }
+    if (full.overlap) {
+      EXPECT_EQ(r.lower, 0.0);
+    }
+  }
+  EXPECT_EQ(st.pairs_total, static_cast<long>(brute.size()));
+  EXPECT_EQ(st.pairs_culled + st.pairs_tested, st.pairs_total);
+  EXPECT_GT(st.pairs_culled, 0) << "the broad phase culled nothing";
+  std::printf("within %.3g: %ld pairs within of %zu, %ld tested, %ld culled, %ld from the previous frame, %ld clear\n",
+              d, within, brute.size(), st.pairs_tested, st.pairs_culled, st.pairs_coherent, clear);
+  return st;
+}
+
+std::vector<PairKey> brute_closest(const std::map<PairKey, SolidDistanceResult>& brute, std::size_t k) {
+  std::vector<std::pair<double, PairKey>> all;
+  for (const auto& [key, r] : brute) all.push_back({r.upper, key});
+  std::sort(all.begin(), all.end());
+  std::vector<PairKey> out;
+  for (std::size_t i = 0; i < std::min(k, all.size()); ++i) out.push_back(all[i].second);
+  return out;
+}
+
+void expect_same(const std::vector<ScenePair>& x, const std::vector<ScenePair>& y) {
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(x[i].a, y[i].a);
+    EXPECT_EQ(x[i].b, y[i].b);
+    // Bit-identical: the same computation, whichever thread ran it.
+    EXPECT_EQ(x[i].result.lower, y[i].result.lower);
+    EXPECT_EQ(x[i].result.upper, y[i].result.upper);
+    EXPECT_EQ(x[i].result.point_a, y[i].result.point_a);
+    EXPECT_EQ(x[i].result.point_b, y[i].result.point_b);
+    EXPECT_EQ(x[i].result.overlap, y[i].result.overlap);
+    EXPECT_EQ(x[i].within, y[i].within);
+  }
+}
+
+TEST(AabbTree, PairsWithinMatchBruteForceAfterBuildAndRefit) {
+  Rng rng(test_seed(81, "AabbTree"));
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 c = rng.box(10), h(rng.uniform(0, 1), rng.uniform(0, 1), rng.uniform(0, 1));
+    boxes.push_back({c - h, c + h});
+  }
+  AabbTree tree;
+  tree.build(boxes);
+  EXPECT_EQ(tree.size(), 2 * boxes.size() - 1);
+  for (int round = 0; round < 3; ++round) {
+    for (double d : {0.0, 0.3, 2.0}) {
+      std::vector<PairKey> got;
+      tree.pairs_within(d, &got);
+      std::sort(got.begin(), got.end());
+      std::vector<PairKey> want;
+      for (int i = 0; i < 400; ++i)
+        for (int j = i + 1; j < 400; ++j)
+          if (boxes[i].gap(boxes[j]) <= d) want.push_back({i, j});
+      EXPECT_EQ(got, want) << "round " << round << " d " << d;
+    }
+    // Move every box a little (refit keeps the tree) or a lot (rebuild).
+    const double step = round == 0 ? 0.2 : 8.0;
+    for (Aabb& b : boxes) {
+      const Vec3 m = rng.box(step);
+      b = {b.lo + m, b.hi + m};
+    }
+    tree.refit(boxes);
+  }
+}
+
+TEST(Scene, BoxesHoldTheSolids) {
+  const Case c = random_scene(test_seed(5, "BoxesHoldTheSolids"), 30, 3.0);
+  Scene s(c, SceneOptions{});
+  std::mt19937_64 g(7);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const PosedSolid& p = s.solid(i);
+    for (const Piece& piece : p.profile->pieces)
+      for (int k = 0; k <= 20; ++k) {
+        const auto [u0, u1] = piece_domain(piece);
+        const Vec2 q = piece_point(piece, u0 + k / 20.0 * (u1 - u0));
+        const double phi = 2 * M_PI * U(g);
+        const Vec3 x = p.R * Vec3(q.x() * std::cos(phi), q.x() * std::sin(phi), q.y()) + p.t;
+        EXPECT_TRUE((x.array() >= s.box(i).lo.array()).all() && (x.array() <= s.box(i).hi.array()).all())
+            << "instance " << i << " point outside its box";
+      }
+  }
+}
+
+TEST(Scene, WithinMatchesBruteForceOnMixedSolids) {
+  const Case c = random_scene(test_seed(11, "WithinMixed"), 36, 2.5);
+  SceneOptions plain;
+  plain.coherence = false;
+  Scene s(c, plain);
+  const auto brute = brute_force(s);
+  for (double d : {0.0, 0.05, 0.4}) expect_within_matches_brute(s, d, brute);
+  // Moving mixed solids with coherence: settled pairs keep the brute force's answers.
+  Scene m(c, SceneOptions{});
+  for (double f : {0.0, 1.0}) {
+    SceneStats st;
+    m.set_frame(f, &st);
+    expect_within_matches_brute(m, 0.3, brute_force(m));
+  }
+}
+
+TEST(Scene, WithinMatchesBruteForceOnMovingRingMesh) {
+  const Case c = case_from_json(ring_mesh_case(21, test_seed(3, "RingMesh")), "rings");
+  Scene s(c, SceneOptions{});
+  long coherent = 0;
+  // Frame 1 settles pairs from frame 0 (coherence), frame 9 is a jump.
+  for (double f : {0.0, 1.0, 9.0}) {
+    SceneStats st;
+    s.set_frame(f, &st);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const Pose p = pose_at_frame(c.instances[i].pose, c.instances[i].motion, f);
+      EXPECT_EQ(s.solid(i).t, p.translation);
+      EXPECT_EQ(s.solid(i).R, p.rotation());
+    }
+    const auto brute = brute_force(s);
+    coherent += expect_within_matches_brute(s, 0.2, brute).pairs_coherent;
+  }
+  EXPECT_GT(coherent, 0) << "no pair was settled from its previous frame";
+}
+
+TEST(Scene, ClosestAndNearestMatchSortingEveryPair) {
+  const Case c = random_scene(test_seed(17, "Closest"), 30, 3.0);
+  Scene s(c, SceneOptions{});
+  const auto brute = brute_force(s);
+  for (std::size_t k : {1, 4, 40}) {
+    SceneStats st;
+    const std::vector<ScenePair> got = s.closest(k, &st);
+    const std::vector<PairKey> want = brute_closest(brute, k);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(PairKey(got[i].a, got[i].b), want[i]) << "k " << k << " rank " << i;
+      // Reported brackets are plain full distances.
+      EXPECT_EQ(got[i].result.lower, brute.at(want[i]).lower);
+      EXPECT_EQ(got[i].result.upper, brute.at(want[i]).upper);
+    }
+    EXPECT_EQ(st.pairs_culled + st.pairs_tested, st.pairs_total);
+  }
+  for (std::int32_t q : {0, 13}) {
+    SceneStats st;
+    const std::vector<ScenePair> got = s.nearest(q, 3, &st);
+    std::vector<std::pair<double, std::int32_t>> all;
+    for (std::int32_t j = 0; j < static_cast<std::int32_t>(s.size()); ++j)
+      if (j != q) all.push_back({brute.at({std::min(q, j), std::max(q, j)}).upper, j});
+    std::sort(all.begin(), all.end());
+    ASSERT_EQ(got.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(got[i].a, q);
+      EXPECT_EQ(got[i].b, all[i].second) << "nearest of " << q << " rank " << i;
+    }
+  }
+}
+
+TEST(Scene, ThreadsGiveBitIdenticalAnswers) {
+  const Case c = random_scene(test_seed(23, "Threads"), 40, 3.0);
+  SceneOptions one, three;
+  three.threads = 3;
+  Scene s1(c, one), s3(c, three);
+  for (double f : {0.0, 4.0}) {
+    SceneStats a, b;
+    s1.set_frame(f, &a);
+    s3.set_frame(f, &b);
+    expect_same(s1.within(0.3, &a), s3.within(0.3, &b));
+    expect_same(s1.closest(5, &a), s3.closest(5, &b));
+    expect_same(s1.nearest(2, 4, &a), s3.nearest(2, 4, &b));
+    EXPECT_EQ(a.pairs_tested, b.pairs_tested);
+    EXPECT_EQ(a.pairs_threshold, b.pairs_threshold);
+    EXPECT_EQ(a.narrow_calls, b.narrow_calls);
+    EXPECT_EQ(a.node_pairs, b.node_pairs);
+  }
+}
+
+}  // namespace
+}  // namespace revdist
