@@ -152,14 +152,15 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   Table table({"a", "b", "distance", "lower", "upper", "overlap", "converged", work_column, "time_us"});
   const auto start = std::chrono::steady_clock::now();
   bool progress_shown = false;
+  const bool tty = isatty(fileno(stderr));  // a log gets plain lines, a terminal one rewritten line
   for (std::size_t q = 0; q < c.queries.size(); ++q) {
     Answer a = engine.query(c.queries[q].first, c.queries[q].second);
     results.push_back(std::move(a.json));
     table.add(std::move(a.row));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (elapsed > 1.0 && q + 1 < c.queries.size()) {
-      std::fprintf(stderr, "\rdistance: %zu/%zu queries", q + 1, c.queries.size());
-      progress_shown = true;
+      std::fprintf(stderr, tty ? "\rdistance: %zu/%zu queries" : "distance: %zu/%zu queries\n", q + 1, c.queries.size());
+      progress_shown = tty;
     }
   }
   if (progress_shown) std::fprintf(stderr, "\n");

@@ -632,26 +632,35 @@ class Solver {
     t.ok = true;
     t.lower = lb;
     // A genuine pair along the circles' closest pair, found in doubles and then
-    // bounded like any box (so it is a proof whatever the doubles did).
-    const Vec3 pa = cd.point_a, pb = cd.point_b, d = (pb - pa).normalized();
-    const Vec3 target_s = pa + d * 0.5 * (R_lo[0] + R_hi[0]);
-    const Vec3 target_e = pb - d * 0.5 * (R_lo[1] + R_hi[1]);
-    // Target points in each solid's own frame: S's through the inverse frame.
-    Vec3 xs;
-    for (int i = 0; i < 3; ++i) {
-      double acc = 0.0;
-      for (int k = 0; k < 3; ++k) acc += mid(f.M[k][i]) * (target_s[k] - mid(f.o[k]));
-      xs[i] = acc;
+    // bounded like any box (so it is a proof whatever the doubles did). Every
+    // closest pair certified so far is tried: symmetric configurations have
+    // several, and the one in this job's sectors may have come from another job.
+    for (const auto& entry : circle_cache_) {
+      const Vec3 pa = entry.second.point_a, pb = entry.second.point_b;
+      if (!((pb - pa).norm() > 0)) continue;
+      const Vec3 d = (pb - pa).normalized();
+      const Vec3 target_s = pa + d * 0.5 * (R_lo[0] + R_hi[0]);
+      const Vec3 target_e = pb - d * 0.5 * (R_lo[1] + R_hi[1]);
+      // Target points in each solid's own frame: S's through the inverse frame.
+      Vec3 xs;
+      for (int i = 0; i < 3; ++i) {
+        double acc = 0.0;
+        for (int k = 0; k < 3; ++k) acc += mid(f.M[k][i]) * (target_s[k] - mid(f.o[k]));
+        xs[i] = acc;
+      }
+      Box b;
+      b.job = j;
+      b.lo[0] = b.hi[0] = project(delem_[sides[0]][ids[0]], Vec2(std::hypot(xs.x(), xs.y()), xs.z()));
+      b.lo[1] = b.hi[1] = s_of(std::atan2(xs.y(), xs.x()));
+      b.lo[2] = b.hi[2] = job.three_d ? project(delem_[sides[1]][ids[1]],
+                                                Vec2(std::hypot(target_e.x(), target_e.y()), target_e.z()))
+                                      : 0.0;
+      const Eval ev = bound_box<Ia>(b, ielem_[sides[0]][ids[0]], ielem_[sides[1]][ids[1]], iframes_[job.s_side]);
+      if (ev.upper < t.upper_sq) {
+        t.upper_sq = ev.upper;
+        t.box = b;
+      }
     }
-    Box b;
-    b.job = j;
-    b.lo[0] = b.hi[0] = project(delem_[sides[0]][ids[0]], Vec2(std::hypot(xs.x(), xs.y()), xs.z()));
-    b.lo[1] = b.hi[1] = s_of(std::atan2(xs.y(), xs.x()));
-    b.lo[2] = b.hi[2] =
-        job.three_d ? project(delem_[sides[1]][ids[1]], Vec2(std::hypot(target_e.x(), target_e.y()), target_e.z())) : 0.0;
-    const Eval ev = bound_box<Ia>(b, ielem_[sides[0]][ids[0]], ielem_[sides[1]][ids[1]], iframes_[job.s_side]);
-    t.upper_sq = ev.upper;
-    t.box = b;
     return t;
   }
 
