@@ -1,10 +1,13 @@
 // `revdist circles FILE [--engine fast|exact|both] [--json]`: circle-pair
-// distances, closest points and binormal counts (SPEC sections 4 and 5).
+// distances, closest points, binormal counts and (fast) every binormal line
+// (SPEC sections 4 and 5). The count is of distinct feet on circle b (see
+// fast/circle_distance.h); the lines are all of them, several per foot possible.
 #include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -40,7 +43,8 @@ const char* status_name(ExactStatus s) {
 
 struct FastAnswer {
   Circle3Circle3Result result;
-  int binormals = 0;  // from the full binormal enumeration
+  int binormals = 0;  // distinct feet on b, -1 for a continuum
+  std::vector<CircleBinormal> lines;  // every binormal line (empty for a continuum)
   double slack = 0.0;  // rounding allowance of the double engine
 };
 
@@ -53,9 +57,28 @@ FastAnswer run_fast(const CirclePair& p) {
   const double scale = std::max({p.a.radius, p.b.radius, (p.a.center - p.b.center).norm()});
   f.slack = 64 * std::numeric_limits<double>::epsilon() * scale;
   bool infinite = false;
-  const auto lines = circle3_circle3_binormals(p.a, p.b, &infinite);
-  f.binormals = infinite ? -1 : static_cast<int>(lines.size());
+  f.binormals = static_cast<int>(circle3_circle3_binormals(p.a, p.b, &infinite).size());
+  if (infinite) f.binormals = -1;
+  else f.lines = circle3_circle3_binormal_lines(p.a, p.b, &infinite);
   return f;
+}
+
+Json lines_json(const std::vector<CircleBinormal>& lines) {
+  Json out = Json::array();
+  for (const CircleBinormal& l : lines)
+    out.push_back({{"point_a", vec_json(l.point_a)}, {"point_b", vec_json(l.point_b)}, {"length", l.distance}});
+  return out;
+}
+
+// The lines under the table, one per row, so the text output shows them all too.
+void print_lines(std::size_t pair, const FastAnswer& f) {
+  if (f.binormals < 0) {
+    std::printf("  #%zu: infinitely many binormal lines (a continuum of feet on b)\n", pair);
+    return;
+  }
+  for (std::size_t k = 0; k < f.lines.size(); ++k)
+    std::printf("  #%zu line %zu: %s - %s  length %s\n", pair, k, vec_text(f.lines[k].point_a).c_str(),
+                vec_text(f.lines[k].point_b).c_str(), full(f.lines[k].distance).c_str());
 }
 
 Json fast_json(const FastAnswer& f) {
@@ -65,7 +88,8 @@ Json fast_json(const FastAnswer& f) {
               {"status", status_name(f.result.status)},
               {"point_a", vec_json(f.result.point_a)},
               {"point_b", vec_json(f.result.point_b)},
-              {"binormals", f.binormals}};
+              {"binormals", f.binormals},
+              {"lines", lines_json(f.lines)}};
 }
 
 Json exact_json(const ExactCircleResult& e) {
@@ -91,8 +115,10 @@ void run(const Options& o) {
   const bool progress = want_exact && pairs.size() > 200;  // exact runs ~ms per pair
 
   Json results = Json::array();
+  std::vector<FastAnswer> fast_answers;  // for the line listing under the table
   Table table(o.engine == "both"
-                  ? std::vector<std::string>{"#", "fast", "exact [lower, upper]", "difference", "status", "binormals"}
+                  ? std::vector<std::string>{"#", "fast", "exact [lower, upper]", "difference", "fast status",
+                                             "exact status", "binormals fast/exact"}
               : want_exact
                   ? std::vector<std::string>{"#", "distance", "[lower, upper]", "status", "binormals", "point_a", "point_b"}
                   : std::vector<std::string>{"#", "distance", "status", "binormals", "point_a", "point_b"});
@@ -108,12 +134,15 @@ void run(const Options& o) {
                                                         : 0.0;
       results.push_back({{"fast", fast_json(f)}, {"exact", exact_json(e)}, {"difference", diff}});
       table.add({idx, full(f.result.distance), "[" + full(e.lower) + ", " + full(e.upper) + "]",
-                 fixed_digits(diff, 3), status_name(e.status), std::to_string(e.binormals)});
+                 fixed_digits(diff, 3), status_name(f.result.status), status_name(e.status),
+                 std::to_string(f.binormals) + "/" + std::to_string(e.binormals)});
+      fast_answers.push_back(f);
     } else if (want_fast) {
       const FastAnswer f = run_fast(pairs[i]);
       results.push_back(fast_json(f));
       table.add({idx, full(f.result.distance), status_name(f.result.status),
                  std::to_string(f.binormals), vec_text(f.result.point_a), vec_text(f.result.point_b)});
+      fast_answers.push_back(f);
     } else {
       const ExactCircleResult e = circle3_circle3_distance_exact(pairs[i].a, pairs[i].b);
       results.push_back(exact_json(e));
@@ -129,6 +158,10 @@ void run(const Options& o) {
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
     std::printf("%s", table.str().c_str());
+    if (!fast_answers.empty()) {
+      std::printf("binormal lines (fast engine):\n");
+      for (std::size_t i = 0; i < fast_answers.size(); ++i) print_lines(i, fast_answers[i]);
+    }
   }
 }
 

@@ -340,9 +340,21 @@ std::vector<CircleBinormal> circle3_circle3_binormal_lines_within(const Circle3&
 
 std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Circle3& b,
                                                       bool* infinitely_many) {
+  // One definition with the distance kernel: closest pairs that form a
+  // continuum (decided there to rounding, e.g. coaxial circles whose rotated
+  // doubles left the polynomial a few ulps from zero) whose point on b is off
+  // a's axis (so it has one nearest point on a) move along b: a continuum of feet.
+  // (A closest point of b on a's axis is one foot with a cone of lines.)
   bool inf = false;
-  const auto lines = all_lines(a, b, &inf);
+  const Circle3Circle3Result d = circle3_circle3_distance(a, b);
+  if (d.status == CircleCircleStatus::infinitely_many && a.radius > 0 && b.radius > 0) {
+    const Vec3 n = a.normal.normalized();
+    const double scale = std::max({a.radius, b.radius, (a.center - b.center).norm()});
+    inf = (d.point_b - a.center).cross(n).norm() > 1e-9 * scale;
+  }
+  const auto lines = inf ? std::vector<Line>{} : all_lines(a, b, &inf);
   if (infinitely_many) *infinitely_many = inf;
+  if (inf) return {};
   // One line per distinct point Q of b (lines come sorted by θ; the seam at ±π
   // is checked against the first).
   std::vector<Line> per_q;

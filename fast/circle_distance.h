@@ -50,7 +50,9 @@ Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b
 // from a point of a's axis), so its size() is that count. Lines of zero length
 // (contact points) are not binormals. *infinitely_many is set when the points Q
 // form a continuum (coaxial, Villarceau, meridian circles, a point centre on b's
-// axis); the vector is then empty. Slower than circle3_circle3_distance (a
+// axis), and whenever circle3_circle3_distance reports infinitely_many closest
+// pairs of two circles with the closest point of b off a's axis (they then move
+// along b; both decided to rounding); the vector is then empty. Slower than circle3_circle3_distance (a
 // degree-8 root isolation); used by the CLI and the tests, not on the hot path.
 std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Circle3& b,
                                                       bool* infinitely_many = nullptr);

@@ -128,7 +128,11 @@ def main():
         for m in mutants:
             print("%-26s %-28s %s" % (m[0], m[1], pattern_status(ROOT, m) or "ok: " + m[4]))
         return 0
-    src, build = os.path.join(a.dir, "src"), os.path.join(a.dir, "build")
+    # build/ inside the copy, as in a worktree, so ccache (paths relative to
+    # CCACHE_BASEDIR) reuses the objects of unmutated files.
+    src = os.path.join(a.dir, "src")
+    build = os.path.join(src, "build")
+    os.environ["CCACHE_BASEDIR"] = a.dir
     log = os.path.join(a.dir, "mutation.log")
     os.makedirs(src, exist_ok=True)
     open(log, "w").close()
@@ -169,6 +173,11 @@ def main():
                 verdict, tests = "BUILD FAILED (fix the mutant)", ""
                 all_caught = False
             else:
+                # Without cost data ctest runs in registration order (core, fast, ...),
+                # so the fast kernels' tests come early and the first failure stops the run.
+                cost = os.path.join(build, "Testing", "Temporary", "CTestCostData.txt")
+                if os.path.exists(cost):
+                    os.remove(cost)
                 rc = run(ctest + ["--stop-on-failure"], src, log)
                 text = open(log).read()[start:]
                 failed = failed_tests(text)

@@ -96,10 +96,49 @@ TEST(Cli, CirclesBothReportsDifference) {
   }
 }
 
+// The table shows every pair's distance (the file's expected values, to the
+// 6 significant digits a reader checks) and the binormal lines under it.
 TEST(Cli, CirclesTableByDefault) {
-  const CommandRun r = run("circles " + src("cases/circles/coaxial.json"));
+  // Coaxial pairs: a continuum of lines; parallel planes: finitely many.
+  for (const char* file : {"cases/circles/coaxial.json", "cases/circles/parallel_planes.json"}) {
+    const CommandRun r = run(std::string("circles ") + src(file));
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(src(file));
+    const nlohmann::json pairs = nlohmann::json::parse(in)["pairs"];
+    const std::size_t table_end = r.out.find("binormal lines");
+    ASSERT_NE(table_end, std::string::npos) << r.out;
+    const std::string table = r.out.substr(0, table_end), lines = r.out.substr(table_end);
+    int listed = 0;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (!pairs[i].contains("expected") || !pairs[i]["expected"].is_number()) continue;
+      char want[32];
+      std::snprintf(want, sizeof want, "%.6g", pairs[i]["expected"].get<double>());
+      // The full-precision distance starts with the 6 significant digits (rounding aside).
+      EXPECT_NE(table.find(std::string(want).substr(0, 6)), std::string::npos) << file << " pair " << i << "\n" << table;
+      ++listed;
+      EXPECT_NE(lines.find("#" + std::to_string(i) + (pairs[i].value("infinitely_many", false) ? ": infinitely many" : " line 0:")),
+                std::string::npos)
+          << file << " pair " << i << "\n" << lines;
+    }
+    EXPECT_GT(listed, 5) << file;
+  }
+}
+
+// --engine both: each engine's status and count are visible (the Villarceau rows
+// read infinitely_many for fast and ok for exact, not one merged "ok").
+TEST(Cli, CirclesBothShowsEachEngine) {
+  const CommandRun r = run("circles " + src("cases/circles/villarceau.json") + " --engine both");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("distance"), std::string::npos);
+  EXPECT_NE(r.out.find("fast status"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("exact status"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("infinitely_many"), std::string::npos) << r.out;
+  const CommandRun j = run("circles " + src("cases/circles/random.json") + " --engine both --json");
+  ASSERT_EQ(j.status, 0) << j.err;
+  for (const auto& res : nlohmann::json::parse(j.out)["results"]) {
+    ASSERT_TRUE(res["fast"].contains("lines"));
+    EXPECT_EQ(res["fast"]["lines"].size() >= res["fast"]["binormals"].get<std::size_t>(), true);
+    for (const auto& l : res["fast"]["lines"]) EXPECT_GE(l["length"].get<double>(), res["fast"]["distance"].get<double>() * (1 - 1e-12));
+  }
 }
 
 // Each bad file: exit 2, nothing on stdout, exactly one line on stderr naming the file.
