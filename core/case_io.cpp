@@ -26,7 +26,15 @@ std::string fmt(double v) {
   return buf;
 }
 
-std::string in_quotes(const std::string& s) { return "\"" + s + "\""; }
+// The range of numbers the engines handle with their rounding allowances intact: squares
+// and products of a few lengths must neither overflow nor underflow, and a profile's join
+// tolerance (1e-9 of its size) must stay above the rounding of its coordinates.
+constexpr double kMaxMagnitude = 1e100;
+constexpr double kMinProfileSize = 1e-100;
+constexpr double kMaxOffsetRatio = 1e6;    // largest |coordinate| / profile size
+constexpr double kMaxWeightRatio = 1e6;    // largest / smallest weight within one piece
+
+std::string in_quotes(const std::string& s) { return quote(s); }
 
 const char* kind_name(PieceKind k) {
   switch (k) {
@@ -62,6 +70,12 @@ std::vector<double> read_weights(const Json& j, std::size_t count, const JsonWhe
     if (!(v > 0)) where.fail("weight " + fmt(v) + " <= 0 (index " + std::to_string(i) + ")");
     w.push_back(v);
   }
+  // Only ratios matter (a common factor leaves the curve unchanged); a huge ratio pulls
+  // the curve into a near-cusp at one control point whose fit never ends (issue 10 item 17).
+  const auto [lo, hi] = std::minmax_element(w.begin(), w.end());
+  if (*hi > kMaxWeightRatio * *lo)
+    where.fail("weights " + fmt(*lo) + " and " + fmt(*hi) + " differ by more than a factor " +
+               fmt(kMaxWeightRatio) + " (the curve degenerates towards one control point)");
   return w;
 }
 
@@ -168,12 +182,48 @@ void check_arcs(const Profile& profile, const std::string& item, const JsonWhere
   }
 }
 
+// Coordinates in the range the engines handle (see kMaxMagnitude); a curve piece whose
+// end control point is repeated has a zero end tangent (a singular point the spiral
+// split cannot start from).
+void check_magnitudes(const Profile& profile, const std::string& item, const JsonWhere& top) {
+  double big = 0;
+  for (std::size_t i = 0; i < profile.pieces.size(); ++i) {
+    const JsonWhere w{top.file, item + " piece " + std::to_string(i)};
+    for (const Vec2& q : profile.pieces[i].points) {
+      big = std::max({big, std::abs(q.x()), std::abs(q.y())});
+      if (std::max(std::abs(q.x()), std::abs(q.y())) > kMaxMagnitude)
+        w.fail("coordinate " + fmt(std::max(std::abs(q.x()), std::abs(q.y()))) + " beyond the supported range +-" +
+               fmt(kMaxMagnitude));
+    }
+  }
+  const double size = profile_size(profile);
+  const JsonWhere w{top.file, item};
+  if (size < kMinProfileSize)
+    w.fail("the profile's size " + fmt(size) + " is below the supported " + fmt(kMinProfileSize));
+  if (big > kMaxOffsetRatio * size)
+    w.fail("the profile (size " + fmt(size) + ") lies " + fmt(big) + " from the origin of its plane, more than " +
+           fmt(kMaxOffsetRatio) + " times its size: double rounding would exceed its tolerances");
+  const double tol = profile_tolerance(profile);
+  for (std::size_t i = 0; i < profile.pieces.size(); ++i) {
+    const Piece& p = profile.pieces[i];
+    if (p.kind != PieceKind::bezier && p.kind != PieceKind::bspline) continue;
+    const std::size_t n = p.points.size();
+    if (n < 3) continue;
+    const JsonWhere wp{top.file, item + " piece " + std::to_string(i)};
+    if ((p.points[1] - p.points[0]).norm() <= tol)
+      wp.fail("the first two control points coincide (a zero tangent at the start: split the piece or drop one)");
+    if ((p.points[n - 1] - p.points[n - 2]).norm() <= tol)
+      wp.fail("the last two control points coincide (a zero tangent at the end: split the piece or drop one)");
+  }
+}
+
 Profile read_profile(const Json& j, const std::string& item, const JsonWhere& top) {
   const JsonWhere w{top.file, item};
   if (!j.is_array() || j.empty()) w.fail("a profile must be a non-empty array of pieces");
   Profile profile;
   for (std::size_t i = 0; i < j.size(); ++i)
     profile.pieces.push_back(read_piece(j[i], {top.file, item + " piece " + std::to_string(i)}));
+  check_magnitudes(profile, item, top);
   check_arcs(profile, item, top);
   const std::string where = top.file + ": " + item;
   join_profile(profile, where);
@@ -252,7 +302,12 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
     if (n2 == 0) wq.fail("the zero quaternion is not a rotation");
     if (!(n2 >= DBL_MIN) || !std::isfinite(n2)) wq.fail("quaternion too small or too large to normalise (|q|^2 = " + fmt(n2) + ")");
   }
-  if (j.contains("translation")) inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));
+  if (j.contains("translation")) {
+    inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));
+    if (inst.pose.translation.cwiseAbs().maxCoeff() > kMaxMagnitude)
+      sub(w, "translation").fail("component " + fmt(inst.pose.translation.cwiseAbs().maxCoeff()) +
+                                 " beyond the supported range +-" + fmt(kMaxMagnitude));
+  }
   const SolidDef& s = c.solids[inst.solid];
   if (j.contains("time")) {
     inst.time = read_number(j["time"], sub(w, "time"));
@@ -325,8 +380,12 @@ Case read_case(const std::string& path) {
     const SolidDef& s = c.solids[inst.solid];
     if (!s.deformable() || inst.time == std::floor(inst.time) || !checked.emplace(inst.solid, inst.time).second)
       continue;
-    check_profile(profile_at(s, inst.time),
-                  path + ": instance " + in_quotes(inst.name) + " (solid " + in_quotes(s.name) + " at time " + fmt(inst.time) + ")");
+    const std::string item = "instance " + in_quotes(inst.name) + " (solid " + in_quotes(s.name) + " at time " +
+                             fmt(inst.time) + ")";
+    const Profile blended = profile_at(s, inst.time);
+    check_magnitudes(blended, item, top);
+    check_arcs(blended, item, top);
+    check_profile(blended, path + ": " + item);
   }
   if (doc.contains("queries")) {
     const Json& qs = doc["queries"];
