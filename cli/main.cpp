@@ -27,8 +27,10 @@ std::string one_line(const char* what) {
 // error (exit 1), never a silent success.
 int finish_stdout(int status) {
   if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    std::fprintf(stderr, "revdist: error writing standard output\n");
-    return status == 0 ? 1 : status;
+    if (status == 0) {
+      std::fprintf(stderr, "revdist: error writing standard output\n");
+      return 1;
+    }
   }
   return status;
 }
