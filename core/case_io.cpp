@@ -106,6 +106,20 @@ void check_knots(const Piece& p, const JsonWhere& where) {
   }
 }
 
+// A B-spline does not change under an affine map of its knots. Moving them to start at 0
+// and span [1, 2) keeps parameter-space thresholds of the fit meaningful (knots scaled by
+// 1e-100 made the spiral split run without end). Only exact operations are used: the
+// shift when t - t0 is exact for every knot, and a power-of-two scale.
+void normalize_knots(std::vector<double>& t) {
+  const double t0 = t.front();
+  bool exact_shift = true;
+  for (double v : t) exact_shift = exact_shift && (v - t0) + t0 == v && (v - t0) - v == -t0;
+  if (exact_shift)
+    for (double& v : t) v -= t0;
+  const int e = std::ilogb(t.back() - t.front());
+  for (double& v : t) v = std::ldexp(v, -e);
+}
+
 Piece read_piece(const Json& j, const JsonWhere& where) {
   if (!j.is_object()) where.fail("expected a piece object such as {\"line\": [[r, z], [r, z]]}");
   static const char* kinds[] = {"line", "arc", "bezier", "bspline"};
@@ -160,6 +174,7 @@ Piece read_piece(const Json& j, const JsonWhere& where) {
         p.knots.push_back(read_number(knots[i], sub(where, "knot " + std::to_string(i))));
       if (body.contains("weights")) p.weights = read_weights(body["weights"], p.points.size(), where);
       check_knots(p, where);
+      normalize_knots(p.knots);
       break;
     }
   }

@@ -141,6 +141,20 @@ TEST(HostileCli, DefaultsScaleWithTheModel) {
   }
 }
 
+TEST(HostileCli, KnotScaleDoesNotChangeTheAnswer) {
+  // Regression (fuzz seed 1): knots scaled by 1e-100 describe the same curve; the fit ran
+  // without end. The same brackets as the pawn itself, up to the rounding of k * 1e-100
+  // in the file's knots (a few ulps of each knot: 1e-12 of the distance is ample).
+  const nlohmann::json a = distance_json(src("cases/models/pawn.json"));
+  const nlohmann::json b = distance_json(src("cases/regressions/cli_pawn_knots_1e-100.json"));
+  ASSERT_EQ(a["results"].size(), b["results"].size());
+  for (std::size_t i = 0; i < a["results"].size(); ++i) {
+    const double d = a["results"][i]["upper"].get<double>();
+    EXPECT_NEAR(a["results"][i]["lower"].get<double>(), b["results"][i]["lower"].get<double>(), 1e-12 * d);
+    EXPECT_NEAR(a["results"][i]["upper"].get<double>(), b["results"][i]["upper"].get<double>(), 1e-12 * d);
+  }
+}
+
 TEST(HostileCli, RelTolAsksForDigits) {
   const std::string c = src("cases/regressions/cli_scaled_1e-20.json");
   const nlohmann::json doc = distance_json(c + " --rel-tol 1e-9");
