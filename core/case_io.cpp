@@ -364,8 +364,18 @@ Profile profile_at(const SolidDef& solid, double time) {
   return out;
 }
 
-Case read_case(const std::string& path) {
-  const Json doc = read_json_file(path);
+namespace {
+Case read_case_from(const Json& doc, const std::string& path);
+}  // namespace
+
+Case read_case(const std::string& path) { return read_case_from(read_json_file(path), path); }
+
+Case read_case_text(const std::string& text, const std::string& path) {
+  return read_case_from(parse_json_text(text, path), path);
+}
+
+namespace {
+Case read_case_from(const Json& doc, const std::string& path) {
   const JsonWhere top{path, ""};
   if (!doc.is_object()) top.fail("expected a JSON object");
   require_format(doc, "revdist/1", top);
@@ -425,5 +435,6 @@ Case read_case(const std::string& path) {
   }
   return c;
 }
+}  // namespace
 
 }  // namespace revdist

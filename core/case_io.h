@@ -28,6 +28,8 @@ namespace revdist {
 // pairs i < j in instance order; absent "instances" is allowed (`revdist fit` needs only
 // solids). Solids are stored in the order of their names (JSON objects are unordered).
 Case read_case(const std::string& path);
+// The same on text in memory (the fuzz target's entry); path only names it in messages.
+Case read_case_text(const std::string& text, const std::string& path);
 
 // The profile of a solid at keyframe time s (clamped to [0, K-1]): control points and
 // weights blended linearly between keyframes floor(s) and ceil(s) (missing weights count
