@@ -28,10 +28,7 @@
 #include "core/curve_eval.h"
 #include "fast/case_model.h"
 #include "fast/solid_distance.h"
-
-#ifdef REVDIST_HAVE_FCL
-#include <fcl/fcl.h>
-#endif
+#include "compare/mesh_fcl.h"
 
 namespace {
 
@@ -151,96 +148,25 @@ void bm_distance(benchmark::State& state, const CaseModel* m, const std::vector<
   state.counters["converged"] = converged / n;
 }
 
-#ifdef REVDIST_HAVE_FCL
-using BVH = fcl::BVHModel<fcl::OBBRSSd>;
-
-// Triangles of the solid: the profile sampled so every chord is within eps/2
-// of the curve (recursive halving on the midpoint deviation), each ring cut
-// into n_theta sectors with r_max (1 - cos(pi / n_theta)) <= eps / 2.
-std::shared_ptr<BVH> mesh_solid(const Profile& p, double eps, long* triangles) {
-  std::vector<Vec2> pts;
-  for (const Piece& piece : p.pieces) {
-    const auto [u0, u1] = piece_domain(piece);
-    std::vector<double> us = {u0};
-    std::function<void(double, double, int)> split = [&](double a, double b, int depth) {
-      const Vec2 pa = piece_point(piece, a), pb = piece_point(piece, b);
-      double dev = 0;
-      for (double f : {0.25, 0.5, 0.75}) {
-        const Vec2 q = piece_point(piece, a + f * (b - a));
-        const Vec2 d = pb - pa;
-        const double l = d.norm();
-        dev = std::max(dev, l > 0 ? std::abs(d.x() * (q - pa).y() - d.y() * (q - pa).x()) / l : (q - pa).norm());
-      }
-      if (piece.kind != PieceKind::line && dev > 0.5 * eps && depth < 30) {
-        split(a, 0.5 * (a + b), depth + 1);
-        split(0.5 * (a + b), b, depth + 1);
-      } else {
-        us.push_back(b);
-      }
-    };
-    split(u0, u1, 0);
-    for (std::size_t k = pts.empty() ? 0 : 1; k < us.size(); ++k) pts.push_back(piece_point(piece, us[k]));
-  }
-  double rmax = 0;
-  for (const Vec2& q : pts) rmax = std::max(rmax, q.x());
-  const int nt = std::max(8, static_cast<int>(std::ceil(M_PI / std::acos(1.0 - 0.5 * eps / rmax))));
-  std::vector<fcl::Vector3d> v;
-  std::vector<fcl::Triangle> t;
-  std::vector<int> ring_start;
-  for (const Vec2& q : pts) {
-    ring_start.push_back(static_cast<int>(v.size()));
-    if (q.x() == 0) {
-      v.emplace_back(0, 0, q.y());
-      continue;
-    }
-    for (int j = 0; j < nt; ++j) v.emplace_back(q.x() * std::cos(2 * M_PI * j / nt), q.x() * std::sin(2 * M_PI * j / nt), q.y());
-  }
-  for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-    const bool a0 = pts[k].x() == 0, b0 = pts[k + 1].x() == 0;
-    const int sa = ring_start[k], sb = ring_start[k + 1];
-    for (int j = 0; j < nt; ++j) {
-      const int j1 = (j + 1) % nt;
-      if (a0 && b0) break;
-      if (a0) t.emplace_back(sa, sb + j, sb + j1);
-      else if (b0) t.emplace_back(sa + j, sb, sa + j1);
-      else {
-        t.emplace_back(sa + j, sb + j, sb + j1);
-        t.emplace_back(sa + j, sb + j1, sa + j1);
-      }
-    }
-  }
-  auto m = std::make_shared<BVH>();
-  m->beginModel();
-  m->addSubModel(v, t);
-  m->endModel();
-  *triangles = static_cast<long>(t.size());
-  return m;
-}
-
-void bm_fcl(benchmark::State& state, std::shared_ptr<BVH> ma, std::shared_ptr<BVH> mb, long tris,
+void bm_fcl(benchmark::State& state, std::shared_ptr<const FclMesh> ma, std::shared_ptr<const FclMesh> mb, long tris,
             const std::vector<PosePair>* poses, const CaseModel* m, std::size_t ia, std::size_t ib, double eps) {
   std::vector<double> times, cpu;
   double max_err = 0;
   std::size_t i = 0;
   for (auto _ : state) {
     const PosePair& p = (*poses)[i++ % poses->size()];
-    fcl::Transform3d Xa = fcl::Transform3d::Identity(), Xb = fcl::Transform3d::Identity();
-    Xa.linear() = p.Ra, Xa.translation() = p.ta, Xb.linear() = p.Rb, Xb.translation() = p.tb;
-    fcl::CollisionObjectd oa(ma, Xa), ob(mb, Xb);
-    fcl::DistanceRequestd req;
-    fcl::DistanceResultd res;  // fresh per query (NOTES.md section 5)
-    const double c0 = thread_cpu_us();
     const auto t0 = Clock::now();
-    const double ret = fcl::distance(&oa, &ob, req, res);
+    const FclDistanceResult f = fcl_mesh_distance(*ma, p.Ra, p.ta, *mb, p.Rb, p.tb);
     const auto t1 = Clock::now();
-    cpu.push_back(thread_cpu_us() - c0);
-    benchmark::DoNotOptimize(ret);  // the return value: res.min_distance read back garbage here (FCL 0.7 Debian build)
+    cpu.push_back(f.cpu_us);
+    const double ret = f.distance;
+    benchmark::DoNotOptimize(ret);
     times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
     if (i <= poses->size()) {
       PosedSolid A = m->instances[ia], B = m->instances[ib];
       A.R = p.Ra, A.t = p.ta, B.R = p.Rb, B.t = p.tb;
       const double d = solid_distance(A, B, DistanceOptions{kTol}).distance;
-      if (std::getenv("REVDIST_BENCH_DEBUG")) std::fprintf(stderr, "fcl %.9g ret %.9g revdist %.9g\n", res.min_distance, ret, d);
+      if (std::getenv("REVDIST_BENCH_DEBUG")) std::fprintf(stderr, "fcl %.9g revdist %.9g\n", ret, d);
       max_err = std::max(max_err, std::abs(ret - d));
     }
   }
@@ -251,7 +177,6 @@ void bm_fcl(benchmark::State& state, std::shared_ptr<BVH> ma, std::shared_ptr<BV
   state.counters["max_abs_err_vs_revdist"] = max_err;
   state.counters["eps"] = eps;
 }
-#endif
 
 }  // namespace
 
@@ -288,7 +213,6 @@ int main(int argc, char** argv) {
       }
     }
   }
-#ifdef REVDIST_HAVE_FCL
   std::vector<double> fcl_eps = {1e-3, 1e-4};
   if (const char* e = std::getenv("REVDIST_BENCH_FCL_EPS")) {
     fcl_eps.clear();
@@ -299,13 +223,12 @@ int main(int argc, char** argv) {
     }
   }
   for (double eps : fcl_eps) {
-    std::map<std::string, std::pair<std::shared_ptr<BVH>, long>> meshes;
+    std::map<std::string, std::pair<std::shared_ptr<const FclMesh>, long>> meshes;
     for (std::size_t i = 0; i < c.instances.size(); ++i) {
       const std::string& solid = c.solids[c.instances[i].solid].name;
       if (!meshes.count(solid)) {
-        long tris = 0;
-        auto mesh = mesh_solid(*models[1e-5]->instances[i].profile, eps, &tris);
-        meshes[solid] = {mesh, tris};
+        auto mesh = make_fcl_mesh(mesh_solid(*models[1e-5]->instances[i].profile, eps));
+        meshes[solid] = {mesh, fcl_mesh_triangles(*mesh)};
       }
     }
     for (const auto& pd : pairs) {
@@ -320,7 +243,6 @@ int main(int argc, char** argv) {
       })->Unit(benchmark::kMicrosecond);
     }
   }
-#endif
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

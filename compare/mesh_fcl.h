@@ -1,0 +1,56 @@
+// The mesh baseline (NOTES.md section 5): inscribed triangle meshes of solids of
+// revolution at a chordal error bound, and FCL 0.7 mesh-mesh distance on them.
+// Shared by `revdist compare` and `revdist bench`. No FCL header leaks from here.
+#pragma once
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/profile.h"
+#include "core/vec.h"
+
+namespace revdist {
+
+// A closed triangle mesh of the surface of revolution, in the solid's local
+// frame. Inscribed: every vertex lies on the true surface (profile points
+// rotated), so the mesh is within `eps` of the surface both ways (chordal
+// error), and distances between inscribed meshes are biased upward on convex
+// parts (NOTES.md section 5).
+struct SolidMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  int sectors = 0;  // cuts around the axis: r_max (1 - cos(pi / sectors)) <= eps / 2
+  int rings = 0;    // profile samples: every chord within eps / 2 of its curve
+  double eps = 0.0;
+};
+
+// Meshes the profile at chordal error eps > 0. Lines are one chord each, arcs
+// are cut into equal sub-arcs by their closed-form sagitta, curves by recursive
+// halving until 15 interior samples of each span lie within eps / 2 of its
+// chord (sampling: not a proof, which the report says).
+SolidMesh mesh_solid(const Profile& profile, double eps);
+
+// An FCL OBBRSS bounding-volume hierarchy of a mesh (opaque: FCL stays in the .cpp).
+class FclMesh;
+std::shared_ptr<const FclMesh> make_fcl_mesh(const SolidMesh& mesh);
+// Bytes of the hierarchy: bounding volumes, triangles, vertices, the model object.
+long fcl_mesh_bytes(const FclMesh& mesh);
+long fcl_mesh_triangles(const FclMesh& mesh);
+
+struct FclDistanceResult {
+  // fcl::distance's return value between the two triangle surfaces. 0 when
+  // triangles intersect; a positive value when one mesh lies inside the other
+  // (FCL measures surfaces, not solids). FCL ignores rel_err / abs_err for
+  // mesh-mesh distance, so this is its full-accuracy answer on the meshes.
+  double distance = 0.0;
+  bool witnesses = false;  // false when distance == 0 (FCL gives no points then)
+  Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  // world frame
+  double cpu_us = 0.0;  // thread CPU time of the fcl::distance call alone
+};
+
+// Distance between mesh a at pose (R_WA, t_WA) and mesh b at (R_WB, t_WB), a
+// fresh request and result per call (FCL reuses stale results otherwise).
+FclDistanceResult fcl_mesh_distance(const FclMesh& a, const Mat3& R_WA, const Vec3& t_WA, const FclMesh& b,
+                                    const Mat3& R_WB, const Vec3& t_WB);
+
+}  // namespace revdist
