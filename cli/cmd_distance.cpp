@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+#include <unistd.h>
 
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -104,20 +105,42 @@ class FastEngine {
 // The certified engine (exact/solid_distance_exact.h) works on the input
 // curves themselves (no biarc trees, so --eps does not apply): lower/upper are
 // doubles rounded outward from a proven interval; "converged" means
-// upper - lower <= tol.
+// upper - lower <= tol (or <= rel_tol * lower), tol = --tol, or 1e-9 x the query's
+// scale when not given.
+// stats keeps fast's keys with the exact engine's meaning: node_pairs = parameter
+// boxes bounded, leaf_pairs = element pairs (profile element of a x of b),
+// patch_pairs = element pairs searched by branch and bound, quick_pairs =
+// element pairs settled in closed form (tube against tube), refined_parts =
+// boxes re-bounded on MPFI near contact.
 class ExactEngine {
  public:
-  ExactEngine(const Case& c, const Options& o) : c_(c), tol_(o.tol), rel_tol_(o.rel_tol) {
-    xo_.absolute_width = o.tol;
+  ExactEngine(const Case& c, const Options& o) : c_(c), o_(o) {
+    if (o.tol_given) xo_.absolute_width = o.tol;
+    xo_.relative_width = 1e-9;
   }
   Answer query(std::size_t ia, std::size_t ib) const {
     const Instance& ins_a = c_.instances[ia];
     const Instance& ins_b = c_.instances[ib];
     const Profile pa = profile_at(c_.solids[ins_a.solid], ins_a.time);
     const Profile pb = profile_at(c_.solids[ins_b.solid], ins_b.time);
-    const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo_);
+    ExactSolidOptions xo = xo_;
+    // A query running past a second shows its bracket on stderr: plain lines
+    // when stderr is not a terminal (logs), one rewritten line when it is.
+    const bool tty = isatty(fileno(stderr));
+    bool shown = false;
+    const std::string na = printable(ins_a.name, 40), nb = printable(ins_b.name, 40);
+    xo.progress = [&](const ExactProgress& p) {
+      std::fprintf(stderr, "%sdistance %s-%s: %.1f s, %ld boxes, [%.17g, %.17g] width %.3g (target %.3g)%s",
+                   tty ? "\r" : "", na.c_str(), nb.c_str(), p.seconds, p.boxes, p.lower, p.upper,
+                   p.upper - p.lower, p.target_width, tty ? "" : "\n");
+      std::fflush(stderr);
+      shown = true;
+    };
+    const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo);
+    if (shown && tty) std::fprintf(stderr, "\n");
+    const double tol = o_.tol_given ? o_.tol : 1e-9 * r.scale;
     const bool converged =
-        r.certified && (r.upper - r.lower <= tol_ || r.upper - r.lower <= rel_tol_ * r.lower);
+        r.certified && (r.upper - r.lower <= tol || r.upper - r.lower <= o_.rel_tol * r.lower);
     const double distance = r.certified ? 0.5 * r.lower + 0.5 * r.upper : r.upper;
     const double us = r.time_ms * 1e3;
     Answer a;
@@ -129,9 +152,19 @@ class ExactEngine {
               {"overlap", r.overlap},
               {"converged", converged},
               {"certified", r.certified},
+              {"tol", tol},
+              {"scale", r.scale},
               {"point_a", vec_json(r.point_a)},
               {"point_b", vec_json(r.point_b)},
-              {"stats", {{"boxes", r.boxes}, {"time_us", us}}}};
+              {"stats", {{"node_pairs", r.boxes},
+                         {"leaf_pairs", r.element_pairs},
+                         {"patch_pairs", r.searched_pairs},
+                         {"quick_pairs", r.closed_form_pairs},
+                         {"refined_parts", r.mpfi_boxes},
+                         {"boxes", r.boxes},
+                         {"mpfi_boxes", r.mpfi_boxes},
+                         {"closed_form_pairs", r.closed_form_pairs},
+                         {"time_us", us}}}};
     if (!r.reason.empty()) a.json["reason"] = r.reason;
     a.lower = r.lower;
     a.upper = r.certified ? r.upper : std::numeric_limits<double>::infinity();
@@ -146,7 +179,7 @@ class ExactEngine {
 
  private:
   const Case& c_;
-  double tol_, rel_tol_;
+  const Options& o_;
   ExactSolidOptions xo_;
 };
 
@@ -173,10 +206,12 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
     if (std::ferror(stdout)) throw std::runtime_error("error writing standard output");
   };
   if (o.json) {
-    std::printf("{\"format\": \"revdist-result/1\", \"engine\": %s, \"eps\": %s, \"tol\": %s, \"rel_tol\": %s,\n"
+    // exact without --tol: 1e-9 x each query's scale; the absolute one is in each record's "tol".
+    const bool relative = o.engine == "exact" && !o.tol_given;
+    std::printf("{\"format\": \"revdist-result/1\", \"engine\": %s, \"eps\": %s, \"tol\": %s,%s \"rel_tol\": %s,\n"
                 " \"results\": [",
-                Json(o.engine).dump().c_str(), Json(o.eps).dump().c_str(), Json(o.tol).dump().c_str(),
-                Json(o.rel_tol).dump().c_str());
+                Json(o.engine).dump().c_str(), Json(o.eps).dump().c_str(), Json(relative ? 1e-9 : o.tol).dump().c_str(),
+                relative ? " \"tol_relative_to_scale\": true," : "", Json(o.rel_tol).dump().c_str());
   } else if (!o.jsonl) {
     // Times and full digits are in --json; the table keeps what a reader needs.
     std::printf("%s  %s  %-15s  %-15s  %-7s  %-12s  %7s  %s\n", pad("a", name_w).c_str(), pad("b", name_w).c_str(),
@@ -269,7 +304,8 @@ void add_distance_command(CLI::App& app) {
   CLI::Option* tol = cmd->add_option(
       "--tol", opts->tol,
       "stop when upper - lower <= tol, an absolute length; default 1e-6, scaled like --eps (with --rel-tol "
-      "alone: the smallest meaningful tol); at least 2e-13 of |translation| + solid extent");
+      "alone: the smallest meaningful tol; exact engine: 1e-9 x the query's scale); at least 2e-13 of "
+      "|translation| + solid extent");
   cmd->add_option("--rel-tol", opts->rel_tol,
                   "also stop when upper - lower <= rel-tol * lower (digits rather than units); 0 = off");
   cmd->add_option("--engine", opts->engine, "fast (double) or exact (certified)")
