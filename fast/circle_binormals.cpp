@@ -246,16 +246,21 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     *infinite = true;
     return out;
   }
-  double th[16 * 17];
-  int n = 0;
+  constexpr int kCap = 640;  // 16 windows at most, 36 entries each (two charts, wrapped)
+  double th[kCap];
+  int n = -1;
   if ((std::isfinite(max_len) || test) && dropped_lb) {
     double win[2 * 32], dlb;
     const int nw = near_windows(a, b, max_len, test, win, &dlb);
     *dropped_lb = dlb;
-    for (int w = 0; w < nw; ++w) n += trig_poly_roots_window(phi, 8, win[2 * w], win[2 * w + 1], th + n);
-  } else {
-    n = trig_poly_roots(phi, 8, th);
+    n = 0;
+    for (int w = 0; w < nw && n >= 0; ++w) {
+      const int m = trig_poly_roots_window(phi, 8, win[2 * w], win[2 * w + 1], th + n, kCap - n);
+      n = m < 0 ? -1 : n + m;
+    }
+    if (n < 0) *dropped_lb = std::numeric_limits<double>::infinity();  // whole circle below
   }
+  if (n < 0) n = trig_poly_roots(phi, 8, th);
   for (int i = 0; i < n; ++i) {
     for (double sg : {1.0, -1.0}) {
       double t = th[i];

@@ -225,7 +225,7 @@ int trig_poly_roots(const double* a, int n, double* th) {
   return k;
 }
 
-int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th) {
+int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th, int cap) {
   double mag = 0;
   for (int i = 0; i <= n; ++i) mag += std::abs(a[i]);
   const double tol = 64 * n * kEps * mag;  // as in trig_poly_roots
@@ -241,7 +241,8 @@ int trig_poly_roots_window(const double* a, int n, double th0, double th1, doubl
       const double x0 = std::max(s + shift, -th_lim), x1 = std::min(e + shift, th_lim);
       if (!(x0 <= x1)) continue;
       const int m = poly_roots_in(chart ? b : a, n, std::tan(0.5 * x0), std::tan(0.5 * x1), tol, r);
-      for (int i = 0; i < m && k < 2 * n; ++i) th[k++] = wrap_pi(2 * std::atan(r[i]) + centre);
+      if (k + m > cap) return -1;
+      for (int i = 0; i < m; ++i) th[k++] = wrap_pi(2 * std::atan(r[i]) + centre);
     }
   }
   return k;

@@ -373,17 +373,6 @@ double plane_bound(const Patch& F, const Patch& O) {
   return -std::numeric_limits<double>::infinity();
 }
 
-double patch_pair_cheap_lower(const Patch& A, const Patch& B) {
-  Vec2 ca, cb;
-  double ra, rb;
-  patch_disk(A, &ca, &ra);
-  patch_disk(B, &cb, &rb);
-  double lb = circle3_circle3_lower_bound(patch_disk_circle(A, ca), patch_disk_circle(B, cb)) - ra - rb;
-  if (!A.straight && !B.straight)
-    lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(A), patch_major_circle(B)) - A.rho - B.rho);
-  return lb;
-}
-
 PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   PatchQuick q;
   q.lower = patch_disk_bound(A, B);

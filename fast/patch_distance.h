@@ -78,9 +78,5 @@ struct PatchQuick {
 };
 PatchQuick patch_pair_quick(const Patch& A, const Patch& B);
 
-// A lower bound of the same kind as patch_pair_quick's, in closed form (no
-// iteration: fast/circle_bound.h on the bounding tori and the major circles);
-// never above patch_pair_quick(A, B).lower except by rounding.
-double patch_pair_cheap_lower(const Patch& A, const Patch& B);
 
 }  // namespace revdist

@@ -140,6 +140,9 @@ void segment_functions(const BezierSegment& seg, bool blossomed, double coord_ma
 // Parts of a segment narrower than this (in t) are not halved further: below
 // it a sign change is located to within a few ulp of the parameter anyway.
 constexpr double kTinyPart = 0x1p-44;
+// Undecided stretches wider than this (relative to a segment) between equal
+// signs leave the span unproven (see SignTrack).
+constexpr double kWideGap = 0x1p-16;
 // Halvings per function and segment; the bundled models need a few dozen.
 constexpr int kMaxBoxes = 1 << 14;
 
@@ -148,13 +151,21 @@ constexpr int kMaxBoxes = 1 << 14;
 // after. Between two proven parts lie a proven simple root (split there), or
 // undecided parts (split at a knot inside them if there is one, where the
 // function may jump, else at their middle), or nothing but a knot.
+// An undecided stretch wider than `wide` with the same proven sign on both
+// sides may hide a pair of sign changes below the rounding of the computed
+// numerators (a sliver near a cusp, say): then nothing is claimed (doubt).
+// Touching roots leave undecided stretches of ~sqrt(rounding) ~ 1e-7 of a
+// segment, well below `wide`.
 struct SignTrack {
   int last = 0;         // last proven sign (0: none yet)
   double gap_lo = 0.0;  // where the last proven information ended
-  void see(int sign, double at, const std::vector<double>& breaks, std::vector<double>& splits) {
+  bool doubt = false;
+  void see(int sign, double at, double wide, const std::vector<double>& breaks, std::vector<double>& splits) {
     if (last != 0 && sign != last) {
       const auto k = std::lower_bound(breaks.begin(), breaks.end(), gap_lo);
       splits.push_back(k != breaks.end() && *k <= at ? *k : 0.5 * (gap_lo + at));
+    } else if (last != 0 && at - gap_lo > wide) {
+      doubt = true;
     }
     last = sign;
   }
@@ -170,8 +181,8 @@ struct SplitScratch {
 
 // Appends to `splits` the sign changes of r', z', K and N and the singular
 // points of the piece, from the proven isolation on each Bezier segment.
-// Returns false when the work bound stopped an isolation (the spans are then
-// not proven to be spirals).
+// Returns false when the work bound stopped an isolation or an undecided
+// stretch could hide sign changes (the spans are then not proven spirals).
 bool isolate_splits(const Piece& piece, SplitScratch& sc) {
   const std::vector<BezierSegment> segs = piece_bezier_segments(piece);
   double coord_mag = 0.0, weight_mag = 1.0;
@@ -192,7 +203,7 @@ bool isolate_splits(const Piece& piece, SplitScratch& sc) {
       complete &= bernstein_sign_items(sc.fn.f[f], kTinyPart, kMaxBoxes, sc.items);
       for (const SignItem& it : sc.items) {
         if (it.left == 0) continue;
-        track[f].see(it.left, at(it.t0), sc.breaks, sc.splits);
+        track[f].see(it.left, at(it.t0), kWideGap * h, sc.breaks, sc.splits);
         if (it.right != it.left) {
           sc.splits.push_back(at(it.root));
           track[f].last = it.right;
@@ -224,6 +235,7 @@ bool isolate_splits(const Piece& piece, SplitScratch& sc) {
       seen_positive = true;
     }
   }
+  for (const SignTrack& t : track) complete &= !t.doubt;
   return complete;
 }
 

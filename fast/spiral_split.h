@@ -33,9 +33,11 @@ struct SpiralSpan {
   SpanKind kind = SpanKind::curve;
   double u0 = 0.0, u1 = 0.0;
   SpanEnds ends;
-  // The isolation of the split points finished within its work bound, so r',
-  // z', K and N are proven to keep one sign on the span (to within a few ulp
-  // of the parameter at its ends). Always true for lines and arcs.
+  // The isolation of the split points finished within its work bound and left
+  // no wide undecided stretch, so r', z', K and N are proven to keep one sign
+  // on the span (to within a few ulp of the parameter at its ends, and up to
+  // stretches where a function is within rounding of 0). Always true for
+  // lines and arcs; false for every span of the piece otherwise.
   bool proven = true;
 };
 
