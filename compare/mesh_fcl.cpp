@@ -141,6 +141,7 @@ long fcl_mesh_bytes(const FclMesh& mesh) {
          static_cast<long>(sizeof(fcl::Vector3d)) * m.num_vertices + static_cast<long>(sizeof(m));
 }
 long fcl_mesh_triangles(const FclMesh& mesh) { return mesh.triangles; }
+long fcl_mesh_bv_nodes(const FclMesh& mesh) { return mesh.bvh->getNumBVs(); }
 
 FclDistanceResult fcl_mesh_distance(const FclMesh& a, const Mat3& R_WA, const Vec3& t_WA, const FclMesh& b,
                                     const Mat3& R_WB, const Vec3& t_WB) {

@@ -36,6 +36,8 @@ std::shared_ptr<const FclMesh> make_fcl_mesh(const SolidMesh& mesh);
 // Bytes of the hierarchy: bounding volumes, triangles, vertices, the model object.
 long fcl_mesh_bytes(const FclMesh& mesh);
 long fcl_mesh_triangles(const FclMesh& mesh);
+// Bounding volumes of the hierarchy (Tables 1-2 of the paper count BVH nodes).
+long fcl_mesh_bv_nodes(const FclMesh& mesh);
 
 struct FclDistanceResult {
   // fcl::distance's return value between the two triangle surfaces. 0 when

@@ -1,0 +1,487 @@
+// `revdist bench`: the paper's section 5 experiments (Tables 1-2, Figures 8, 9,
+// 12) with FCL OBBRSS meshes of the same chordal error as the same-run baseline.
+#include "compare/bench_paper.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+
+#include <Eigen/Geometry>
+
+#include "compare/mesh_fcl.h"
+#include "compare/motion.h"
+#include "core/case_io.h"
+#include "core/input_error.h"
+#include "exact/solid_distance_exact.h"
+#include "fast/biarc_tree.h"
+#include "fast/solid_distance.h"
+
+namespace revdist {
+
+namespace {
+
+double thread_cpu_us() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
+
+// Nearest-rank percentile (q in (0, 1]) of the samples.
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t k = static_cast<std::size_t>(std::ceil(q * v.size()));
+  return v[std::min(v.size() - 1, k > 0 ? k - 1 : 0)];
+}
+
+double mean(const std::vector<double>& v) {
+  if (v.empty()) return NAN;
+  double s = 0;
+  for (double x : v) s += x;
+  return s / v.size();
+}
+
+std::string eps_label(double eps) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0e", eps);
+  return buf;
+}
+
+// A solid's tree at one eps (stable address: PosedSolid points into it).
+struct Built {
+  Profile profile;
+  BiarcTree tree;
+  BuildStats stats;
+  PosedSolid posed() const {
+    PosedSolid p;
+    p.profile = &profile;
+    p.tree = &tree;
+    return p;
+  }
+};
+
+// The deformable solid over the frames: profile and tree per frame at one eps.
+struct Morph {
+  std::vector<std::unique_ptr<Built>> frames;
+  std::vector<double> rebuild_us;  // blend + rebuild per frame
+};
+
+double morph_time(const SolidDef& def, int j, int frames) {
+  return frames > 1 ? static_cast<double>(def.keyframes.size() - 1) * j / (frames - 1) : 0.0;
+}
+
+Morph build_morph(const SolidDef& def, double eps, int frames) {
+  Morph m;
+  BiarcTree scratch;  // the hot path reuses one tree's storage
+  for (int j = 0; j < frames; ++j) {
+    auto b = std::make_unique<Built>();
+    const double c0 = thread_cpu_us();
+    b->profile = profile_at(def, morph_time(def, j, frames));
+    rebuild_biarc_tree(b->profile, eps, scratch, &b->stats);
+    m.rebuild_us.push_back(thread_cpu_us() - c0);
+    b->tree = scratch;
+    m.frames.push_back(std::move(b));
+  }
+  return m;
+}
+
+// Median and p90 of rebuilding one tree (after a warm-up build sized the storage).
+std::vector<double> time_rebuilds(const Profile& p, double eps, int reps) {
+  BiarcTree tree;
+  rebuild_biarc_tree(p, eps, tree);
+  std::vector<double> us;
+  for (int i = 0; i < reps; ++i) {
+    const double c0 = thread_cpu_us();
+    rebuild_biarc_tree(p, eps, tree);
+    us.push_back(thread_cpu_us() - c0);
+  }
+  return us;
+}
+
+struct QueryTimes {
+  std::vector<double> us;
+  std::vector<double> overlap_us;  // frames planned to overlap
+  std::vector<SolidDistanceResult> sample;  // results at the certified sample frames
+  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
+  int overlaps = 0, unconverged = 0;
+};
+
+void set_counters(BenchRecord& r, const QueryTimes& q) {
+  const double n = std::max<std::size_t>(1, q.us.size());
+  r.samples = static_cast<int>(q.us.size());
+  r.median_us = percentile(q.us, 0.5), r.p90_us = percentile(q.us, 0.9), r.mean_us = mean(q.us);
+  r.node_pairs = q.node_pairs / n, r.leaf_pairs = q.leaf_pairs / n, r.patch_pairs = q.patch_pairs / n;
+  r.quick_pairs = q.quick_pairs / n, r.refined = q.refined / n;
+  r.overlaps = q.overlaps, r.unconverged = q.unconverged;
+  r.planned_overlaps = static_cast<int>(q.overlap_us.size());
+  r.overlap_median_us = percentile(q.overlap_us, 0.5), r.overlap_p99_us = percentile(q.overlap_us, 0.99);
+}
+
+// Times solid_distance on every frame, one call per frame, same poses as FCL.
+QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::function<PosedSolid(int)>& a,
+                        const std::function<PosedSolid(int)>& b, double tol, const std::vector<int>& sample) {
+  QueryTimes q;
+  DistanceOptions o;
+  o.tol = tol;
+  std::size_t next = 0;
+  for (int j = 0; j < static_cast<int>(frames.size()); ++j) {
+    PosedSolid A = a(j), B = b(j);
+    A.R = frames[j].R_WA, A.t = frames[j].t_WA, B.R = frames[j].R_WB, B.t = frames[j].t_WB;
+    const double c0 = thread_cpu_us();
+    const SolidDistanceResult r = solid_distance(A, B, o);
+    q.us.push_back(thread_cpu_us() - c0);
+    if (frames[j].target < 0) q.overlap_us.push_back(q.us.back());
+    q.node_pairs += r.stats.node_pairs, q.leaf_pairs += r.stats.leaf_pairs, q.patch_pairs += r.stats.patch_pairs;
+    q.quick_pairs += r.stats.quick_pairs, q.refined += r.stats.refined;
+    q.overlaps += r.overlap, q.unconverged += !r.converged;
+    if (next < sample.size() && sample[next] == j) q.sample.push_back(r), ++next;
+  }
+  return q;
+}
+
+// Frames checked by the certified engine: the middles of k equal stretches of the
+// motion (its first and last frames are nearly the same pose: the motion is periodic).
+std::vector<int> sample_frames(int frames, int k) {
+  std::vector<int> out;
+  k = std::min(k, frames);
+  for (int i = 0; i < k; ++i) out.push_back(static_cast<int>((i + 0.5) * frames / k));
+  return out;
+}
+
+struct Certified {
+  bool ok = false;
+  double lower = 0, upper = 0;
+};
+
+// Error of an answer against the certified interval: 0 inside it.
+double error_vs(const Certified& c, double d) { return d < c.lower ? c.lower - d : d > c.upper ? d - c.upper : 0.0; }
+
+void fold_accuracy(BenchRecord& r, const std::vector<Certified>& exact, const std::vector<SolidDistanceResult>& fast,
+                   const std::vector<SolidDistanceResult>& proven, const std::vector<double>& fcl) {
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    if (!exact[i].ok) {
+      ++r.exact_uncertified;
+      continue;
+    }
+    ++r.exact_frames;
+    // Rounding the fast engine accounts for, relative to the query scale (SPEC section 6).
+    const double slack = 1e-12;
+    if (i < fast.size()) {
+      r.max_err = std::max(r.max_err, error_vs(exact[i], fast[i].distance));
+      r.violations += fast[i].lower > exact[i].upper + slack || fast[i].upper < exact[i].lower - slack;
+    }
+    if (i < proven.size()) {
+      r.proven_max_err = std::max(r.proven_max_err, error_vs(exact[i], proven[i].distance));
+      r.violations += proven[i].lower > exact[i].upper + slack || proven[i].upper < exact[i].lower - slack;
+    }
+    if (i < fcl.size()) r.fcl_max_err = std::max(r.fcl_max_err, error_vs(exact[i], fcl[i]));
+  }
+}
+
+struct MeshSide {
+  std::shared_ptr<const FclMesh> mesh;
+  long triangles = 0, bv_nodes = 0, bytes = 0;
+  double build_us = 0;  // mesh + hierarchy, one build
+};
+
+MeshSide build_mesh(const Profile& p, double eps) {
+  MeshSide m;
+  const double c0 = thread_cpu_us();
+  m.mesh = make_fcl_mesh(mesh_solid(p, eps));
+  m.build_us = thread_cpu_us() - c0;
+  m.triangles = fcl_mesh_triangles(*m.mesh);
+  m.bv_nodes = fcl_mesh_bv_nodes(*m.mesh);
+  m.bytes = fcl_mesh_bytes(*m.mesh);
+  return m;
+}
+
+class Runner {
+ public:
+  Runner(const BenchInput& in, const BenchOptions& o) : in_(in), o_(o) {}
+
+  BenchResult run() {
+    const double c0 = thread_cpu_us();
+    BenchResult out;
+    out.options = o_;
+    out.source = in_.source;
+    fine_eps_ = *std::min_element(o_.eps.begin(), o_.eps.end());
+    // The motion setup needs the gap to ~1e-3 of the size: finer trees only cost time.
+    double extent = INFINITY;
+    for (const auto& st : in_.statics) extent = std::min(extent, profile_extent(profile_at(st.def, 0.0)));
+    setup_eps_ = std::max(fine_eps_, 1e-4 * extent);
+    make_motions();
+    for (double eps : o_.eps) run_eps(eps, out.records);
+    out.cpu_s = (thread_cpu_us() - c0) * 1e-6;
+    return out;
+  }
+
+ private:
+  struct PairMotion {
+    std::size_t a, b;  // static indices (motion) or static a / deformable b (deform)
+    std::string name;
+    std::vector<MotionFrame> frames;
+    std::vector<int> sample;
+    std::vector<Certified> exact;
+  };
+
+  void say(const std::string& s) const {
+    if (o_.progress) o_.progress(s);
+  }
+
+  std::unique_ptr<Built> build(const Profile& p, double eps) const {
+    auto b = std::make_unique<Built>();
+    b->profile = p;
+    b->tree = build_biarc_tree(b->profile, eps, &b->stats);
+    return b;
+  }
+
+  // Frames (setup queries on the finest trees) and certified distances of the sample frames.
+  void make_motions() {
+    std::vector<std::unique_ptr<Built>> fine;
+    for (const auto& s : in_.statics) fine.push_back(build(profile_at(s.def, 0.0), setup_eps_));
+    MotionOptions mo;
+    mo.frames = o_.frames;
+    std::uint64_t seed = o_.seed;
+    for (std::size_t i = 0; i < in_.statics.size(); ++i) {
+      for (std::size_t j = i; j < in_.statics.size(); ++j) {
+        PairMotion pm{i, j, in_.statics[i].name + "-" + in_.statics[j].name, {}, {}, {}};
+        say("motion frames: " + pm.name);
+        mo.seed = seed++;
+        const Built* fb = fine[j].get();
+        pm.frames = near_contact_motion(fine[i]->posed(), [fb](int) { return fb->posed(); }, mo);
+        snap_to_quaternions(pm.frames);
+        certify(pm, [this, i](int) { return profile_at(in_.statics[i].def, 0.0); },
+                [this, j](int) { return profile_at(in_.statics[j].def, 0.0); });
+        motions_.push_back(std::move(pm));
+      }
+    }
+    for (std::size_t d = 0; d < in_.deformables.size(); ++d) {
+      const SolidDef& def = in_.deformables[d].def;
+      const Morph m = build_morph(def, setup_eps_, o_.frames);
+      const Morph* mp = &m;
+      for (std::size_t i = 0; i < in_.statics.size(); ++i) {
+        PairMotion pm{i, d, in_.statics[i].name + "-" + in_.deformables[d].name, {}, {}, {}};
+        say("motion frames: " + pm.name);
+        mo.seed = seed++;
+        pm.frames = near_contact_motion(fine[i]->posed(), [mp](int f) { return mp->frames[f]->posed(); }, mo);
+        snap_to_quaternions(pm.frames);
+        certify(pm, [this, i](int) { return profile_at(in_.statics[i].def, 0.0); },
+                [this, &def](int f) { return profile_at(def, morph_time(def, f, o_.frames)); });
+        deforms_.push_back(std::move(pm));
+      }
+    }
+  }
+
+  void certify(PairMotion& pm, const std::function<Profile(int)>& pa, const std::function<Profile(int)>& pb) {
+    pm.sample = sample_frames(static_cast<int>(pm.frames.size()), o_.exact_frames);
+    ExactSolidOptions xo;
+    xo.absolute_width = 0.1 * fine_eps_;  // fine enough to see each side's error at the finest eps
+    xo.max_boxes = o_.exact_max_boxes;
+    for (int j : pm.sample) {
+      say("certified reference: " + pm.name + " frame " + std::to_string(j));
+      const MotionFrame& f = pm.frames[j];
+      Pose A, B;  // the exact engine takes quaternions; the frame's rotations are orthonormal doubles
+      const Eigen::Quaterniond qa(f.R_WA), qb(f.R_WB);
+      A.q = {qa.w(), qa.x(), qa.y(), qa.z()}, A.translation = f.t_WA;
+      B.q = {qb.w(), qb.x(), qb.y(), qb.z()}, B.translation = f.t_WB;
+      const ExactSolidResult r = solid_distance_exact(pa(j), A, pb(j), B, xo);
+      pm.exact.push_back({r.certified && r.width_reached, r.lower, r.upper});
+    }
+  }
+
+  // The certified sample used the quaternion's rotation: time every side at that same pose.
+  static void snap_to_quaternions(std::vector<MotionFrame>& frames) {
+    for (MotionFrame& f : frames) {
+      const Eigen::Quaterniond qa(f.R_WA), qb(f.R_WB);
+      Pose A, B;
+      A.q = {qa.w(), qa.x(), qa.y(), qa.z()}, B.q = {qb.w(), qb.x(), qb.y(), qb.z()};
+      f.R_WA = A.rotation(), f.R_WB = B.rotation();
+    }
+  }
+
+  void run_eps(double eps, std::vector<BenchRecord>& records) {
+    const std::string el = eps_label(eps);
+    // Tables 1-2 and Figure 9: trees, meshes, build times.
+    std::vector<std::unique_ptr<Built>> trees;
+    std::vector<MeshSide> meshes;
+    for (const auto& s : in_.statics) {
+      say("build " + s.name + " eps " + el);
+      trees.push_back(build(profile_at(s.def, 0.0), eps));
+      const Built& t = *trees.back();
+      const std::vector<double> us = time_rebuilds(t.profile, eps, 41);
+      BenchRecord r;
+      r.experiment = "build", r.pair = s.name, r.eps = eps, r.tol = 2 * eps;
+      r.samples = static_cast<int>(us.size());
+      r.median_us = percentile(us, 0.5), r.p90_us = percentile(us, 0.9), r.mean_us = mean(us);
+      r.nodes = t.stats.nodes, r.leaves = t.stats.leaves, r.bytes = static_cast<long>(t.stats.bytes);
+      r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
+      if (o_.fcl) {
+        say("mesh " + s.name + " eps " + el);
+        meshes.push_back(build_mesh(t.profile, eps));
+        const MeshSide& m = meshes.back();
+        r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = m.build_us;
+        r.ratio = m.build_us / r.median_us;
+        r.fcl_triangles = m.triangles, r.fcl_bv_nodes = m.bv_nodes, r.fcl_bytes = m.bytes;
+      }
+      records.push_back(r);
+    }
+    // Figure 9's last bar and Figure 8: the deformable model rebuilt every frame.
+    for (std::size_t d = 0; d < in_.deformables.size(); ++d) {
+      const auto& def = in_.deformables[d];
+      say("rebuild " + def.name + " over " + std::to_string(o_.frames) + " frames, eps " + el);
+      const Morph m = build_morph(def.def, eps, o_.frames);
+      BenchRecord r;
+      r.experiment = "build", r.pair = def.name, r.eps = eps, r.tol = 2 * eps;
+      r.samples = static_cast<int>(m.rebuild_us.size());
+      r.median_us = percentile(m.rebuild_us, 0.5), r.p90_us = percentile(m.rebuild_us, 0.9);
+      r.mean_us = mean(m.rebuild_us);
+      for (const auto& f : m.frames) {
+        r.nodes = std::max<long>(r.nodes, f->stats.nodes), r.leaves = std::max<long>(r.leaves, f->stats.leaves);
+        r.bytes = std::max<long>(r.bytes, static_cast<long>(f->stats.bytes));
+      }
+      r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
+      if (o_.fcl) {
+        // One mesh rebuild of the first frame: what FCL would pay per frame.
+        const MeshSide ms = build_mesh(m.frames[0]->profile, eps);
+        r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = ms.build_us;
+        r.ratio = ms.build_us / r.mean_us;
+        r.fcl_triangles = ms.triangles, r.fcl_bv_nodes = ms.bv_nodes, r.fcl_bytes = ms.bytes;
+      }
+      records.push_back(r);
+      for (PairMotion& pm : deforms_) {
+        if (pm.b != d) continue;
+        say("deform " + pm.name + " eps " + el);
+        const Built* ta = trees[pm.a].get();
+        const QueryTimes q = time_queries(
+            pm.frames, [ta](int) { return ta->posed(); }, [&m](int f) { return m.frames[f]->posed(); }, 2 * eps,
+            pm.sample);
+        BenchRecord dr;
+        dr.experiment = "deform", dr.pair = pm.name, dr.eps = eps, dr.tol = 2 * eps;
+        set_counters(dr, q);
+        dr.nodes = ta->stats.nodes + r.nodes, dr.leaves = ta->stats.leaves + r.leaves, dr.bytes = ta->tree.bytes() + r.bytes;
+        dr.fcl_median_us = dr.fcl_p90_us = dr.fcl_mean_us = dr.ratio = NAN;
+        dr.proven_median_us = dr.proven_p90_us = NAN;
+        fold_accuracy(dr, pm.exact, q.sample, {}, {});
+        records.push_back(dr);
+      }
+    }
+    // Figure 12: every pair in near-contact motion, revdist (tol 2 eps and the proven mode) and FCL.
+    QueryTimes all, all_proven;
+    std::vector<double> all_fcl;
+    BenchRecord total;
+    for (PairMotion& pm : motions_) {
+      say("motion " + pm.name + " eps " + el + " (" + std::to_string(pm.frames.size()) + " frames)");
+      const Built* ta = trees[pm.a].get();
+      const Built* tb = trees[pm.b].get();
+      auto fa = [ta](int) { return ta->posed(); };
+      auto fb = [tb](int) { return tb->posed(); };
+      const QueryTimes q = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample);
+      const QueryTimes qp = time_queries(pm.frames, fa, fb, o_.proven_tol, pm.sample);
+      BenchRecord r;
+      r.experiment = "motion", r.pair = pm.name, r.eps = eps, r.tol = 2 * eps;
+      set_counters(r, q);
+      r.proven_median_us = percentile(qp.us, 0.5), r.proven_p90_us = percentile(qp.us, 0.9);
+      r.nodes = ta->stats.nodes + tb->stats.nodes, r.leaves = ta->stats.leaves + tb->stats.leaves;
+      r.bytes = static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
+      r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
+      std::vector<double> fcl_sample;
+      if (o_.fcl) {
+        const MeshSide& ma = meshes[pm.a];
+        const MeshSide& mb = meshes[pm.b];
+        std::vector<double> us;
+        std::size_t next = 0;
+        for (int j = 0; j < static_cast<int>(pm.frames.size()); ++j) {
+          const MotionFrame& f = pm.frames[j];
+          const FclDistanceResult fr = fcl_mesh_distance(*ma.mesh, f.R_WA, f.t_WA, *mb.mesh, f.R_WB, f.t_WB);
+          us.push_back(fr.cpu_us);
+          r.fcl_zero += fr.distance == 0;
+          if (next < pm.sample.size() && pm.sample[next] == j) fcl_sample.push_back(fr.distance), ++next;
+        }
+        r.fcl_median_us = percentile(us, 0.5), r.fcl_p90_us = percentile(us, 0.9), r.fcl_mean_us = mean(us);
+        all_fcl.insert(all_fcl.end(), us.begin(), us.end());
+        r.ratio = r.fcl_median_us / r.median_us;
+        r.fcl_triangles = ma.triangles + mb.triangles, r.fcl_bv_nodes = ma.bv_nodes + mb.bv_nodes;
+        r.fcl_bytes = ma.bytes + mb.bytes;
+      }
+      fold_accuracy(r, pm.exact, q.sample, qp.sample, fcl_sample);
+      records.push_back(r);
+      merge(all, q), merge(all_proven, qp);
+      total.nodes += r.nodes, total.leaves += r.leaves, total.bytes += r.bytes, total.fcl_zero += r.fcl_zero;
+      total.exact_frames += r.exact_frames, total.exact_uncertified += r.exact_uncertified;
+      total.violations += r.violations, total.max_err = std::max(total.max_err, r.max_err);
+      total.proven_max_err = std::max(total.proven_max_err, r.proven_max_err);
+      total.fcl_max_err = std::max(total.fcl_max_err, r.fcl_max_err);
+      total.fcl_triangles += r.fcl_triangles, total.fcl_bv_nodes += r.fcl_bv_nodes, total.fcl_bytes += r.fcl_bytes;
+    }
+    if (motions_.empty()) return;
+    // Every frame of every pair: the distribution the targets speak of. Sizes are sums over the pairs.
+    BenchRecord& t = total;
+    t.experiment = "motion", t.pair = "all", t.eps = eps, t.tol = 2 * eps;
+    set_counters(t, all);
+    t.proven_median_us = percentile(all_proven.us, 0.5), t.proven_p90_us = percentile(all_proven.us, 0.9);
+    t.fcl_median_us = percentile(all_fcl, 0.5), t.fcl_p90_us = percentile(all_fcl, 0.9), t.fcl_mean_us = mean(all_fcl);
+    t.ratio = t.fcl_median_us / t.median_us;
+    records.push_back(t);
+  }
+
+  static void merge(QueryTimes& into, const QueryTimes& q) {
+    into.us.insert(into.us.end(), q.us.begin(), q.us.end());
+    into.overlap_us.insert(into.overlap_us.end(), q.overlap_us.begin(), q.overlap_us.end());
+    into.node_pairs += q.node_pairs, into.leaf_pairs += q.leaf_pairs, into.patch_pairs += q.patch_pairs;
+    into.quick_pairs += q.quick_pairs, into.refined += q.refined;
+    into.overlaps += q.overlaps, into.unconverged += q.unconverged;
+  }
+
+  const BenchInput& in_;
+  const BenchOptions& o_;
+  double fine_eps_ = 1e-5, setup_eps_ = 1e-5;
+  std::vector<PairMotion> motions_, deforms_;
+};
+
+BenchInput::Solid solid_named(const Case& c, const std::string& name, const std::string& file) {
+  for (const SolidDef& s : c.solids)
+    if (s.name == name) return {name, s};
+  throw InputError(file + ": solid \"" + name + "\" not found (the paper benchmark needs it)");
+}
+
+}  // namespace
+
+std::string default_models_dir() {
+  if (const char* d = std::getenv("REVDIST_MODELS_DIR")) return d;
+  return std::string(REVDIST_SOURCE_DIR) + "/cases/models";
+}
+
+BenchInput paper_bench_input(const std::string& models_dir) {
+  BenchInput in;
+  in.source = "paper";
+  const std::string pairs = models_dir + "/paper_pairs.json", morph = models_dir + "/morph.json";
+  const Case c = read_case(pairs);
+  for (const char* name : {"pawn", "cup", "bottle", "table", "lightmil"}) in.statics.push_back(solid_named(c, name, pairs));
+  in.deformables.push_back(solid_named(read_case(morph), "morph", morph));
+  in.deformables.back().name = "Mt";
+  return in;
+}
+
+BenchInput case_bench_input(const std::string& case_file) {
+  BenchInput in;
+  in.source = case_file;
+  const Case c = read_case(case_file);
+  for (const SolidDef& s : c.solids) (s.deformable() ? in.deformables : in.statics).push_back({s.name, s});
+  if (in.statics.empty()) throw InputError(case_file + ": no static solid to benchmark (keyframed solids play Mt against static ones)");
+  return in;
+}
+
+BenchResult run_bench(const BenchInput& input, const BenchOptions& options) {
+  if (options.eps.empty()) throw InputError("--eps: at least one value");
+  for (double e : options.eps)
+    if (!(e > 0) || !std::isfinite(e)) throw InputError("--eps: every value must be a finite positive number");
+  if (options.frames < 1) throw InputError("--frames must be at least 1");
+  return Runner(input, options).run();
+}
+
+}  // namespace revdist

@@ -1,0 +1,88 @@
+// The paper's section 5 experiments against an FCL 0.7 OBBRSS mesh baseline
+// (`revdist bench`): Tables 1-2 (tree sizes), Figure 9 (build and deformable
+// rebuild time), Figure 8 (queries against the deformable model), Figure 12
+// (pairs in continuous near-contact motion), at equal accuracy checked against
+// the certified engine on a sample of frames. Timings are per-thread CPU time
+// (CLOCK_THREAD_CPUTIME_ID) per call, summarised by medians and p90.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/profile.h"
+
+namespace revdist {
+
+struct BenchOptions {
+  std::vector<double> eps = {1e-3, 1e-4, 1e-5};
+  int frames = 200;         // frames per pair (Figure 12) and of the deformable model (Figures 8, 9)
+  int exact_frames = 2;     // frames per pair checked by the certified engine (0: none)
+  long exact_max_boxes = 20000;  // certified engine budget per frame (uncertified frames are counted, not used)
+  double proven_tol = 1e-6;      // the proven mode timed beside tol = 2 eps
+  std::uint64_t seed = 20200501;
+  bool fcl = true;
+  // Called with one line of progress at a time (no newline).
+  std::function<void(const std::string&)> progress;
+};
+
+// What is benchmarked: static solids (every pair i <= j moves near contact) and
+// deformable ones (each plays Mt against every static solid).
+struct BenchInput {
+  std::string source;  // "paper" or the case file
+  struct Solid {
+    std::string name;
+    SolidDef def;
+  };
+  std::vector<Solid> statics, deformables;
+};
+
+// The paper's five models (cases/models/paper_pairs.json) and Mt
+// (cases/models/morph.json), from models_dir.
+BenchInput paper_bench_input(const std::string& models_dir);
+// The solids of a revdist/1 case (InputError on bad input).
+BenchInput case_bench_input(const std::string& case_file);
+// Where `paper` finds its models: $REVDIST_MODELS_DIR, else the source tree's cases/models.
+std::string default_models_dir();
+
+// One record per (experiment, pair, eps). Times in microseconds of thread CPU
+// time; NaN where a column does not apply (no FCL side for Figure 8).
+struct BenchRecord {
+  std::string experiment;  // "build" (Tables 1-2, Figure 9), "deform" (Figure 8), "motion" (Figure 12)
+  std::string pair;        // "a-b"; the model's name for "build"
+  double eps = 0.0;
+  double tol = 0.0;        // revdist tolerance of the timed queries (2 eps)
+  int samples = 0;         // timed calls per side
+  double median_us = 0.0, p90_us = 0.0, mean_us = 0.0;
+  double fcl_median_us = 0.0, fcl_p90_us = 0.0, fcl_mean_us = 0.0;
+  double ratio = 0.0;      // FCL median / revdist median, same run
+  double proven_median_us = 0.0, proven_p90_us = 0.0;  // tol = proven_tol ("motion")
+  long nodes = 0, leaves = 0;   // revdist tree nodes (sum over the pair)
+  long bytes = 0;
+  long fcl_triangles = 0, fcl_bv_nodes = 0, fcl_bytes = 0;
+  // Work counters, means per revdist query.
+  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
+  int overlaps = 0;        // frames revdist proved overlapping
+  // Frames planned to overlap slightly (negative gap): how many, and revdist's
+  // time on them (the "overlap proven in <= 50 us for 99 %").
+  int planned_overlaps = 0;
+  double overlap_median_us = 0.0, overlap_p99_us = 0.0;
+  int unconverged = 0;     // revdist queries that did not reach tol
+  int fcl_zero = 0;        // frames FCL reported 0 (intersecting triangles)
+  // Accuracy on the certified sample: |answer - certified distance| (max), and
+  // brackets that miss the certified interval (must be 0).
+  int exact_frames = 0, exact_uncertified = 0;
+  double max_err = 0, proven_max_err = 0, fcl_max_err = 0;
+  int violations = 0;
+};
+
+struct BenchResult {
+  BenchOptions options;
+  std::string source;
+  std::vector<BenchRecord> records;
+  double cpu_s = 0.0;  // thread CPU time of the whole run
+};
+
+BenchResult run_bench(const BenchInput& input, const BenchOptions& options);
+
+}  // namespace revdist

@@ -1,0 +1,136 @@
+// Smoke test of `revdist bench` (CI-sized: a few frames, one eps): exit status,
+// the revdist-bench/1 records, the report files, and its usage errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CommandRun run(const std::string& args) {
+  const std::string err_file = testing::TempDir() + "revdist_bench_stderr_" + std::to_string(getpid()) + ".txt";
+  CommandRun r;
+  FILE* p = popen((std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file).c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::remove(err_file.c_str());
+  return r;
+}
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string src(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }
+
+TEST(BenchCli, PaperSmokeWritesRecordsAndReport) {
+  const std::filesystem::path out = testing::TempDir() + "revdist_bench_" + std::to_string(getpid());
+  const CommandRun r = run("bench paper --frames 3 --eps 1e-3 --exact-frames 0 --json --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Progress goes to stderr as plain lines when it is not a terminal.
+  EXPECT_NE(r.err.find("bench: motion pawn-cup eps 1e-03"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos);
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["format"], "revdist-bench/1");
+  EXPECT_NE(doc["timing"].get<std::string>().find("CLOCK_THREAD_CPUTIME_ID"), std::string::npos);
+  std::set<std::string> motion_pairs, builds, deforms;
+  for (const auto& x : doc["records"]) {
+    for (const char* key : {"pair", "eps", "median_us", "p90_us", "fcl_median_us", "ratio", "nodes", "bytes"})
+      EXPECT_TRUE(x.contains(key)) << key;
+    EXPECT_EQ(x["eps"].get<double>(), 1e-3);
+    const std::string e = x["experiment"];
+    if (e == "motion") {
+      motion_pairs.insert(x["pair"].get<std::string>());
+      EXPECT_GT(x["median_us"].get<double>(), 0);
+      EXPECT_GE(x["p90_us"].get<double>(), x["median_us"].get<double>());
+      ASSERT_TRUE(x["fcl_median_us"].is_number()) << x;
+      // The ratio is the same run's FCL median over revdist's (printed rounding aside).
+      EXPECT_NEAR(x["ratio"].get<double>(), x["fcl_median_us"].get<double>() / x["median_us"].get<double>(),
+                  1e-9 * x["ratio"].get<double>());
+      EXPECT_GT(x["fcl_triangles"].get<long>(), 0);
+      EXPECT_EQ(x["violations"].get<int>(), 0);
+      EXPECT_EQ(x["samples"].get<int>(), x["pair"] == "all" ? 45 : 3);
+    } else if (e == "build") {
+      builds.insert(x["pair"].get<std::string>());
+      EXPECT_GT(x["nodes"].get<long>(), 0);
+      // An inscribed mesh at eps 1e-3 costs far more memory than the biarc tree.
+      EXPECT_GT(x["fcl_bytes"].get<long>(), 10 * x["bytes"].get<long>()) << x;
+      EXPECT_GT(x["fcl_bv_nodes"].get<long>(), x["fcl_triangles"].get<long>());
+    } else if (e == "deform") {
+      deforms.insert(x["pair"].get<std::string>());
+      EXPECT_TRUE(x["fcl_median_us"].is_null());
+    }
+  }
+  EXPECT_EQ(motion_pairs.size(), 16u);  // the 15 pairs (Mi, Mj), i <= j, and "all"
+  EXPECT_EQ(builds, (std::set<std::string>{"pawn", "cup", "bottle", "table", "lightmil", "Mt"}));
+  EXPECT_EQ(deforms.size(), 5u);
+  for (const char* f : {"bench.md", "bench.json", "fig8.svg", "fig9.svg", "fig12.svg"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  EXPECT_EQ(nlohmann::json::parse(read(out / "bench.json")), doc);
+  const std::string md = read(out / "bench.md");
+  EXPECT_NE(md.find("![Figure 12](fig12.svg)"), std::string::npos);
+  EXPECT_NE(md.find("| lightmil | 1e-03 |"), std::string::npos);
+  const std::string svg = read(out / "fig12.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_GT(std::count(svg.begin(), svg.end(), '\n'), 45);  // bars of 16 groups x 3 series
+  std::filesystem::remove_all(out);
+}
+
+TEST(BenchCli, CaseWithCertifiedSample) {
+  // Two static solids: three pairs, one frame each checked by the certified engine.
+  const std::filesystem::path out = testing::TempDir() + "revdist_bench_case_" + std::to_string(getpid());
+  const CommandRun r =
+      run("bench " + src("cases/distance/sphere_can.json") + " --frames 2 --eps 1e-3 --exact-frames 1 --json --out " +
+          out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  int certified = 0;
+  for (const auto& x : doc["records"]) {
+    if (x["experiment"] != "motion" || x["pair"] == "all") continue;
+    certified += x["exact_frames"].get<int>();
+    EXPECT_EQ(x["violations"].get<int>(), 0) << x;
+    // tol = 2 eps; the inscribed mesh is within eps of each surface.
+    EXPECT_LE(x["max_err"].get<double>(), 2e-3) << x;
+    EXPECT_LE(x["fcl_max_err"].get<double>(), 2.1e-3) << x;
+  }
+  EXPECT_GE(certified, 2);
+  std::filesystem::remove_all(out);
+}
+
+TEST(BenchCli, BadInputExitsTwo) {
+  const std::string out = " --out " + testing::TempDir() + "revdist_bench_bad";
+  EXPECT_EQ(run("bench " + src("cases/no-such-file.json") + out).status, 2);
+  EXPECT_EQ(run("bench paper --eps 0" + out).status, 2);
+  EXPECT_EQ(run("bench paper --eps 1e-3,x" + out).status, 2);
+  EXPECT_EQ(run("bench paper --frames 0" + out).status, 2);
+  const CommandRun r = run("bench " + src("cases/bad/not_json.json") + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
