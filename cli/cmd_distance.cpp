@@ -1,16 +1,23 @@
-// `revdist distance CASE [--eps E] [--tol T] [--engine fast|exact] [--json]`:
-// the distance of every query of a case (SPEC sections 5 and 6).
+// `revdist distance CASE [--eps E] [--tol T] [--rel-tol R] [--engine fast|exact] [--json|--jsonl]`:
+// the distance of every query of a case (SPEC sections 5 and 6). Results are written as
+// they come (table rows, JSON records), so memory stays flat and a stopped run keeps
+// what it finished.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <algorithm>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <unistd.h>
 #include <vector>
+#include <unistd.h>
 
 #include "cli/commands.h"
 #include "cli/output.h"
 #include "core/case_io.h"
+#include "core/case_scale.h"
 #include "core/input_error.h"
 #include "exact/solid_distance_exact.h"
 #include "fast/case_model.h"
@@ -24,11 +31,13 @@ using Json = nlohmann::json;
 
 struct Options {
   std::string file;
-  double eps = 1e-5;
-  double tol = 1e-6;
-  bool tol_given = false;  // --engine exact defaults to 1e-9 x the query's scale instead
+  double eps = 1e-5;  // default: 1e-5 * the model's unit (core/case_scale.h)
+  double tol = 1e-6;  // default: 1e-6 * the model's unit
+  double rel_tol = 0.0;
+  bool eps_given = false, tol_given = false;
   std::string engine = "fast";
   bool json = false;
+  bool jsonl = false;
 };
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
@@ -36,15 +45,29 @@ Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 // One query's answer, whichever engine gave it.
 struct Answer {
   Json json;  // the result record of SPEC section 5
-  std::vector<std::string> row;
+  double lower = 0, upper = 0, gap = 0;
+  bool overlap = false, converged = false;
+  std::string reason;
+  long work = 0;
 };
 
-std::string yes_no(bool b) { return b ? "yes" : "no"; }
+// Every exit-0 answer holds a finite bracket (issue 10 item 15): an engine that ends
+// without one says so in the record, and the run exits 1 at the end.
+void require_finite(Answer& a) {
+  if (std::isfinite(a.lower) && std::isfinite(a.upper) && a.lower <= a.upper) return;
+  a.converged = false;
+  a.reason = "no finite bracket" + (a.reason.empty() ? std::string() : ": " + a.reason);
+  a.json["converged"] = false;
+  a.json["reason"] = a.reason;
+}
 
 // The fast engine: biarc trees at eps, then the traversal per query.
 class FastEngine {
  public:
-  FastEngine(const Case& c, const Options& o) : c_(c), model_(build_case_model(c, o.eps)) { opt_.tol = o.tol; }
+  FastEngine(const Case& c, const Options& o) : c_(c), model_(build_case_model(c, o.eps)) {
+    opt_.tol = o.tol;
+    opt_.rel_tol = o.rel_tol;
+  }
   Answer query(std::size_t ia, std::size_t ib) const {
     const auto t0 = std::chrono::steady_clock::now();
     const SolidDistanceResult r = solid_distance(model_.instances[ia], model_.instances[ib], opt_);
@@ -62,9 +85,14 @@ class FastEngine {
                          {"refined_parts", r.stats.refined},
                          {"time_us", us}}}};
     if (!r.converged) a.json["reason"] = r.reason;
-    a.row = {c_.instances[ia].name, c_.instances[ib].name, full(r.distance), full(r.lower), full(r.upper),
-             yes_no(r.overlap), r.converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.stats.node_pairs),
-             fixed_digits(us, 4)};
+    a.lower = r.lower;
+    a.upper = r.upper;
+    a.gap = (r.point_a - r.point_b).norm();
+    a.overlap = r.overlap;
+    a.converged = r.converged;
+    a.reason = r.reason;
+    a.work = r.stats.node_pairs;
+    require_finite(a);
     return a;
   }
 
@@ -77,7 +105,8 @@ class FastEngine {
 // The certified engine (exact/solid_distance_exact.h) works on the input
 // curves themselves (no biarc trees, so --eps does not apply): lower/upper are
 // doubles rounded outward from a proven interval; "converged" means
-// upper - lower <= tol, tol = --tol, or 1e-9 x the query's scale when not given.
+// upper - lower <= tol (or <= rel_tol * lower), tol = --tol, or 1e-9 x the query's
+// scale when not given.
 // stats keeps fast's keys with the exact engine's meaning: node_pairs = parameter
 // boxes bounded, leaf_pairs = element pairs (profile element of a x of b),
 // patch_pairs = element pairs searched by branch and bound, quick_pairs =
@@ -99,9 +128,10 @@ class ExactEngine {
     // when stderr is not a terminal (logs), one rewritten line when it is.
     const bool tty = isatty(fileno(stderr));
     bool shown = false;
+    const std::string na = printable(ins_a.name, 40), nb = printable(ins_b.name, 40);
     xo.progress = [&](const ExactProgress& p) {
       std::fprintf(stderr, "%sdistance %s-%s: %.1f s, %ld boxes, [%.17g, %.17g] width %.3g (target %.3g)%s",
-                   tty ? "\r" : "", ins_a.name.c_str(), ins_b.name.c_str(), p.seconds, p.boxes, p.lower, p.upper,
+                   tty ? "\r" : "", na.c_str(), nb.c_str(), p.seconds, p.boxes, p.lower, p.upper,
                    p.upper - p.lower, p.target_width, tty ? "" : "\n");
       std::fflush(stderr);
       shown = true;
@@ -109,7 +139,8 @@ class ExactEngine {
     const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo);
     if (shown && tty) std::fprintf(stderr, "\n");
     const double tol = o_.tol_given ? o_.tol : 1e-9 * r.scale;
-    const bool converged = r.certified && r.upper - r.lower <= tol;
+    const bool converged =
+        r.certified && (r.upper - r.lower <= tol || r.upper - r.lower <= o_.rel_tol * r.lower);
     const double distance = r.certified ? 0.5 * r.lower + 0.5 * r.upper : r.upper;
     const double us = r.time_ms * 1e3;
     Answer a;
@@ -135,8 +166,14 @@ class ExactEngine {
                          {"closed_form_pairs", r.closed_form_pairs},
                          {"time_us", us}}}};
     if (!r.reason.empty()) a.json["reason"] = r.reason;
-    a.row = {ins_a.name, ins_b.name, full(distance), full(r.lower), full(r.upper), yes_no(r.overlap),
-             converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.boxes), fixed_digits(us, 4)};
+    a.lower = r.lower;
+    a.upper = r.certified ? r.upper : std::numeric_limits<double>::infinity();
+    a.gap = (r.point_a - r.point_b).norm();
+    a.overlap = r.overlap;
+    a.converged = converged;
+    a.reason = r.reason;
+    a.work = r.boxes;
+    require_finite(a);
     return a;
   }
 
@@ -146,39 +183,107 @@ class ExactEngine {
   ExactSolidOptions xo_;
 };
 
-template <class Engine>
-void answer_all(const Case& c, const Engine& engine, const Options& o, const char* work_column) {
-  Json results = Json::array();
-  Table table({"a", "b", "distance", "lower", "upper", "overlap", "converged", work_column, "time_us"});
-  const auto start = std::chrono::steady_clock::now();
-  bool progress_shown = false;
-  const bool tty = isatty(fileno(stderr));  // a log gets plain lines, a terminal one rewritten line
-  for (std::size_t q = 0; q < c.queries.size(); ++q) {
-    Answer a = engine.query(c.queries[q].first, c.queries[q].second);
-    results.push_back(std::move(a.json));
-    table.add(std::move(a.row));
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed > 1.0 && q + 1 < c.queries.size()) {
-      std::fprintf(stderr, tty ? "\rdistance: %zu/%zu queries" : "distance: %zu/%zu queries\n", q + 1, c.queries.size());
-      progress_shown = tty;
-    }
-  }
-  if (progress_shown) std::fprintf(stderr, "\n");
-  if (o.json) {
-    Json doc{{"format", "revdist-result/1"}, {"engine", o.engine}, {"eps", o.eps}, {"tol", o.tol}, {"results", results}};
-    if (o.engine == "exact" && !o.tol_given) {  // 1e-9 x each query's scale; the absolute one is in its "tol"
-      doc["tol"] = 1e-9;
-      doc["tol_relative_to_scale"] = true;
-    }
-    std::printf("%s\n", doc.dump(1).c_str());
-  } else {
-    std::printf("%s", table.str().c_str());
-  }
+// Table cells: the bracket rounded outward to as many digits as its width needs (at most
+// 12; --json keeps every digit), so the printed bracket still holds the distance.
+int bracket_digits(double lower, double upper) {
+  const double w = upper - lower, m = std::max(std::abs(lower), std::abs(upper));
+  if (!(w > 0) || !(m > 0) || !std::isfinite(w)) return 6;
+  return std::clamp(static_cast<int>(std::ceil(std::log10(m / w))) + 2, 4, 12);
 }
 
-void run(const Options& o) {
-  if (!(o.eps > 0) || !(o.tol > 0)) throw InputError("--eps and --tol must be positive");
+std::string pad(std::string s, std::size_t w) {
+  if (s.size() < w) s += std::string(w - s.size(), ' ');
+  return s;
+}
+
+template <class Engine>
+void answer_all(const Case& c, const Engine& engine, const Options& o, const char* work_column) {
+  const std::size_t n = c.queries.size();
+  // Name columns as wide as the longest name, at most 16 (longer names are cut).
+  std::size_t name_w = 1;
+  for (const Instance& inst : c.instances) name_w = std::max(name_w, std::min<std::size_t>(printable(inst.name).size(), 16));
+  auto check_stdout = [] {
+    if (std::ferror(stdout)) throw std::runtime_error("error writing standard output");
+  };
+  if (o.json) {
+    // exact without --tol: 1e-9 x each query's scale; the absolute one is in each record's "tol".
+    const bool relative = o.engine == "exact" && !o.tol_given;
+    std::printf("{\"format\": \"revdist-result/1\", \"engine\": %s, \"eps\": %s, \"tol\": %s,%s \"rel_tol\": %s,\n"
+                " \"results\": [",
+                Json(o.engine).dump().c_str(), Json(o.eps).dump().c_str(), Json(relative ? 1e-9 : o.tol).dump().c_str(),
+                relative ? " \"tol_relative_to_scale\": true," : "", Json(o.rel_tol).dump().c_str());
+  } else if (!o.jsonl) {
+    // Times and full digits are in --json; the table keeps what a reader needs.
+    std::printf("%s  %s  %-15s  %-15s  %-7s  %-12s  %7s  %s\n", pad("a", name_w).c_str(), pad("b", name_w).c_str(),
+                "lower", "upper", "width", "witness_gap", work_column, "status");
+  }
+  std::fflush(stdout);
+  Progress progress("distance", n);
+  long unbracketed = 0;
+  for (std::size_t q = 0; q < n; ++q) {
+    const Answer a = engine.query(c.queries[q].first, c.queries[q].second);
+    unbracketed += !(std::isfinite(a.upper) && std::isfinite(a.lower));
+    if (o.json) {
+      std::printf("%s\n  %s", q == 0 ? "" : ",", a.json.dump().c_str());
+    } else if (o.jsonl) {
+      std::printf("%s\n", a.json.dump().c_str());
+    } else {
+      const int k = bracket_digits(a.lower, a.upper);
+      const std::string status =
+          a.overlap ? "overlap" : a.converged ? "ok" : "NOT converged: " + printable(a.reason, 200);
+      std::printf("%s  %s  %-15s  %-15s  %-7s  %-12s  %7ld  %s\n",
+                  pad(printable(c.instances[c.queries[q].first].name, name_w), name_w).c_str(),
+                  pad(printable(c.instances[c.queries[q].second].name, name_w), name_w).c_str(),
+                  digits_down(a.lower, k).c_str(), digits_up(a.upper, k).c_str(),
+                  digits_up(a.upper - a.lower, 2).c_str(), fixed_digits(a.gap, std::min(k, 7)).c_str(), a.work,
+                  status.c_str());
+    }
+    // Flushed per record: a stopped run keeps every finished query.
+    std::fflush(stdout);
+    check_stdout();
+    progress.update(q + 1);
+  }
+  progress.finish();
+  if (o.json) std::printf("%s]}\n", n == 0 ? "" : "\n ");
+  std::fflush(stdout);
+  check_stdout();
+  if (unbracketed > 0)
+    throw std::runtime_error(std::to_string(unbracketed) + " of " + std::to_string(n) +
+                             " queries ended without a finite bracket (see their reason)");
+}
+
+// eps and tol are absolute lengths. Unset, they scale with the model (core/case_scale.h);
+// set, they must be finite, positive and above what double rounding can resolve here.
+void settle_tolerances(const Case& c, Options& o) {
+  const CaseScale s = case_scale(c);
+  const double unit = default_unit(s);
+  if (!o.eps_given) o.eps = std::max(1e-5 * unit, min_eps(s));
+  if (!o.tol_given) o.tol = o.rel_tol > 0 ? min_tol(s) : std::max(1e-6 * unit, min_tol(s));
+  if (o.eps_given && o.eps < min_eps(s))
+    throw InputError(c.file + ": --eps " + fixed_digits(o.eps, 6) + " is below the smallest meaningful value " +
+                     digits_up(min_eps(s), 3) + " for this case (" + fixed_digits(kMinRelativeEps, 3) +
+                     " of its largest solid extent " + fixed_digits(s.extent, 6) + "; finer fits are lost in rounding)");
+  if (o.tol_given && o.tol < min_tol(s))
+    throw InputError(c.file + ": --tol " + fixed_digits(o.tol, 6) + " is below the smallest meaningful value " +
+                     digits_up(min_tol(s), 3) + " for this case (" + fixed_digits(kMinRelativeTol, 3) +
+                     " of the queries' extent " + fixed_digits(s.query_extent, 6) +
+                     ", |translation| + solid extent; narrower brackets are lost in rounding)");
+}
+
+void check_option(double v, const char* name, bool allow_zero) {
+  if (!std::isfinite(v) || v < 0 || (v == 0 && !allow_zero))
+    throw InputError(std::string(name) + " must be a finite " + (allow_zero ? "non-negative" : "positive") +
+                     " number, got " + fixed_digits(v, 6));
+}
+
+void run(Options o) {
+  if (o.eps_given) check_option(o.eps, "--eps", false);
+  if (o.tol_given) check_option(o.tol, "--tol", false);
+  check_option(o.rel_tol, "--rel-tol", true);
+  if (o.rel_tol >= 1) throw InputError("--rel-tol must be below 1 (a fraction of the distance), got " + fixed_digits(o.rel_tol, 6));
+  if (o.json && o.jsonl) throw InputError("--json and --jsonl exclude each other");
   const Case c = read_case(o.file);
+  settle_tolerances(c, o);
   if (o.engine == "exact") {
     answer_all(c, ExactEngine(c, o), o, "boxes");
   } else {
@@ -192,15 +297,26 @@ void add_distance_command(CLI::App& app) {
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("distance", "Minimum distance for every query of a revdist/1 case");
   cmd->add_option("CASE", opts->file, "revdist/1 JSON case")->required();
-  cmd->add_option("--eps", opts->eps, "biarc approximation bound (proven)")->capture_default_str();
-  cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol (exact engine: default 1e-9 x the query's scale)")
-      ->capture_default_str();
+  CLI::Option* eps = cmd->add_option(
+      "--eps", opts->eps,
+      "biarc approximation bound (proven), an absolute length in the case's units; default 1e-5, times the "
+      "largest profile size when that lies outside [0.01, 100]; at least 1e-12 of the largest solid extent");
+  CLI::Option* tol = cmd->add_option(
+      "--tol", opts->tol,
+      "stop when upper - lower <= tol, an absolute length; default 1e-6, scaled like --eps (with --rel-tol "
+      "alone: the smallest meaningful tol; exact engine: 1e-9 x the query's scale); at least 2e-13 of "
+      "|translation| + solid extent");
+  cmd->add_option("--rel-tol", opts->rel_tol,
+                  "also stop when upper - lower <= rel-tol * lower (digits rather than units); 0 = off");
   cmd->add_option("--engine", opts->engine, "fast (double) or exact (certified)")
       ->check(CLI::IsMember({"fast", "exact"}));
-  cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-result/1)");
-  cmd->callback([opts, cmd] {
-    opts->tol_given = cmd->count("--tol") > 0;
-    run(*opts);
+  cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-result/1), written as results come");
+  cmd->add_flag("--jsonl", opts->jsonl, "one JSON result record per line (streams; a stopped run keeps its lines)");
+  cmd->callback([opts, eps, tol] {
+    Options o = *opts;
+    o.eps_given = eps->count() > 0;
+    o.tol_given = tol->count() > 0;
+    run(o);
   });
 }
 

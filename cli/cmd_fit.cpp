@@ -1,4 +1,4 @@
-// `revdist fit CASE [--eps E] [--svg DIR] [--json]`: the biarc tree of every
+// `revdist fit CASE [--eps E] [--svg DIR] [--json] [--audit]`: the biarc tree of every
 // solid (paper section 4.1, Algorithm 1): pieces, spirals, nodes, leaves,
 // bytes, build time and the claimed (lens-proven) error; SVG pictures on
 // request (SPEC section 5). `--audit` certifies every leaf with interval
@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/output.h"
 #include "core/case_io.h"
+#include "core/case_scale.h"
 #include "core/input_error.h"
 #include "exact/fit_audit.h"
 #include "fast/biarc_tree.h"
@@ -62,15 +63,30 @@ double median_build_us(const Profile& profile, double eps, BiarcTree& tree) {
   return us[us.size() / 2];
 }
 
-std::string safe_file_name(const std::string& name) {
-  std::string out;
-  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
-  return out.empty() ? "solid" : out;
-}
-
-void run(const Options& o) {
-  if (!std::isfinite(o.eps)) throw InputError("--eps must be a finite positive number");
+void run(Options o, bool eps_given) {
+  if (eps_given && !(std::isfinite(o.eps) && o.eps > 0))
+    throw InputError("--eps must be a finite positive number, got " + fixed_digits(o.eps, 6));
+  // An unusable --svg target is bad usage: say so before any work is done.
+  bool created_dir = false;
+  if (!o.svg_dir.empty()) created_dir = prepare_output_dir(o.svg_dir);
+  struct RemoveIfFailed {
+    std::string dir;
+    bool armed;
+    ~RemoveIfFailed() {
+      std::error_code ec;
+      if (armed) std::filesystem::remove(dir, ec);  // only if still empty
+    }
+  } remove_dir{o.svg_dir, created_dir};
   const Case c = read_case(o.file);
+  // eps is an absolute length: the default scales with the model, and values below what
+  // double rounding resolves are refused (core/case_scale.h).
+  const CaseScale scale = case_scale(c);
+  if (!eps_given) o.eps = std::max(1e-4 * default_unit(scale), min_eps(scale));
+  if (o.eps < min_eps(scale))
+    throw InputError(o.file + ": --eps " + fixed_digits(o.eps, 6) + " is below the smallest meaningful value " +
+                     digits_up(min_eps(scale), 3) + " for this case (" + fixed_digits(kMinRelativeEps, 3) +
+                     " of its largest solid extent " + fixed_digits(scale.extent, 6) +
+                     "; finer fits are lost in rounding)");
   std::vector<SolidFit> fits;
   for (const SolidDef& solid : c.solids) {
     SolidFit f;
@@ -83,19 +99,20 @@ void run(const Options& o) {
   if (o.audit) {
     // Tight mode: the certificate measures each fit, not just its claim
     // (~0.7 ms per leaf), so show progress.
+    Progress progress("fit --audit", fits.size());
     for (std::size_t i = 0; i < fits.size(); ++i) {
-      std::fprintf(stderr, "\rfit --audit: solid %zu/%zu (%s)   ", i + 1, fits.size(), fits[i].name.c_str());
+      progress.update(i, fits[i].name);
       fits[i].audit = audit_leaves(biarc_tree_leaves(fits[i].profile, fits[i].tree), nullptr, true);
     }
-    std::fprintf(stderr, "\n");
   }
 
   if (!o.svg_dir.empty()) {
-    std::filesystem::create_directories(o.svg_dir);
-    for (const SolidFit& f : fits) {
-      const std::string path = (std::filesystem::path(o.svg_dir) / (safe_file_name(f.name) + ".svg")).string();
-      write_file_atomically(path, profile_svg(f.name, f.profile, f.tree));
-    }
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const SolidFit& f : fits)
+      files.emplace_back((std::filesystem::path(o.svg_dir) / (file_name_for(f.name) + ".svg")).string(),
+                         profile_svg(f.name, f.profile, f.tree));
+    write_files_atomically(files);
+    remove_dir.armed = false;
   }
 
   if (o.json) {
@@ -161,14 +178,18 @@ void add_fit_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "fit", "Biarc trees of the solids of a case: pieces, spirals, nodes, leaves, bytes, build time, proven error");
   cmd->add_option("CASE", opts->file, "revdist/1 JSON case")->required();
-  cmd->add_option("--eps", opts->eps, "biarc error bound (two-sided Hausdorff, proven), default 1e-4")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--svg", opts->svg_dir, "write DIR/<solid>.svg: profile, arcs, error bands, split points");
+  CLI::Option* eps = cmd->add_option(
+      "--eps", opts->eps,
+      "biarc error bound (two-sided Hausdorff, proven), an absolute length; default 1e-4, times the largest "
+      "profile size when that lies outside [0.01, 100]; at least 1e-12 of the largest solid extent");
+  cmd->add_option("--svg", opts->svg_dir,
+                  "write DIR/<solid>.svg (profile, arcs, error bands, split points), all files or none; in file "
+                  "names every byte but [A-Za-z0-9-] is written _XX");
   cmd->add_flag("--audit", opts->audit,
                 "certify every leaf with interval arithmetic on the input curve (exact/): certified_error, violations");
   cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-fit/1: solids[] with name, nodes, leaves, "
                                       "bytes, build_us, max_error)");
-  cmd->callback([opts] { run(*opts); });
+  cmd->callback([opts, eps] { run(*opts, eps->count() > 0); });
 }
 
 }  // namespace revdist::cli

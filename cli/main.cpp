@@ -3,9 +3,39 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli/commands.h"
 #include "core/input_error.h"
+
+namespace {
+
+// Every message is one line whatever the input put into it (file names, keys).
+std::string one_line(const char* what) {
+  std::string s;
+  for (const char* p = what; *p; ++p) {
+    const unsigned char c = static_cast<unsigned char>(*p);
+    if (c == '\n') s += "\\n";
+    else if (c == '\r') s += "\\r";
+    else if (c < 0x20 || c == 0x7f) s += ' ';
+    else s += *p;
+  }
+  return s;
+}
+
+// stdout is checked once everything is written: `> /dev/full` or a closed pipe is an
+// error (exit 1), never a silent success.
+int finish_stdout(int status) {
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    if (status == 0) {
+      std::fprintf(stderr, "revdist: error writing standard output\n");
+      return 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"revdist: minimum distance between solids of revolution, fast and provably right"};
@@ -26,11 +56,11 @@ int main(int argc, char** argv) {
     app.exit(e);  // prints the usage error
     return 2;
   } catch (const revdist::InputError& e) {
-    std::fprintf(stderr, "revdist: %s\n", e.what());
-    return 2;
+    std::fprintf(stderr, "revdist: %s\n", one_line(e.what()).c_str());
+    return finish_stdout(2);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "revdist: internal error: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "revdist: internal error: %s\n", one_line(e.what()).c_str());
+    return finish_stdout(1);
   }
-  return 0;
+  return finish_stdout(0);
 }

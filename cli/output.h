@@ -1,19 +1,43 @@
 // Output helpers shared by the subcommands: whole-or-nothing file writes,
-// full-precision number formatting, aligned text tables.
+// full-precision number formatting, aligned text tables, progress on stderr.
 #pragma once
+#include <chrono>
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace revdist::cli {
 
-// Writes content to path via a temporary file and a rename, so the file is
-// written whole or not at all. Throws std::runtime_error on failure.
+// Writes a set of files whole or not at all (SPEC section 5): every content goes to a
+// temporary opened exclusively (O_CREAT | O_EXCL, so a planted symlink or file is never
+// followed) in the target's own directory; only when all are written and synced are
+// they renamed into place. On failure, or on SIGINT / SIGTERM / SIGHUP / SIGPIPE while
+// writing, the temporaries are removed. An unusable target (a file where a directory is
+// expected, a read-only or special directory) is an InputError (exit 2); other I/O
+// failures are std::runtime_error.
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& path_and_content);
 void write_file_atomically(const std::string& path, const std::string& content);
+
+// Creates dir (and parents) if needed; InputError naming it when it cannot be a
+// directory we can write into. Returns true when it was created here.
+bool prepare_output_dir(const std::string& dir);
+
+// An injective file name for any solid name: [A-Za-z0-9-] kept, every other byte
+// (including '_') written as _XX, so "a.b", "a_b" and "a b" stay distinct; very long
+// names are cut and keep a hash of the whole name.
+std::string file_name_for(const std::string& name);
+
+// Name cell for tables: control characters escaped, cut to max_len with "...".
+std::string printable(const std::string& name, std::size_t max_len = 1000);
 
 // %.17g: enough digits that the double reads back exactly.
 std::string full(double v);
 // %.*g with the given significant digits, for tables.
 std::string fixed_digits(double v, int digits);
+// %.*g rounded towards -inf / +inf: a printed bracket still contains what the doubles do.
+std::string digits_down(double v, int digits);
+std::string digits_up(double v, int digits);
 
 // A plain text table: a header row and rows of cells, columns aligned.
 class Table {
@@ -25,6 +49,25 @@ class Table {
  private:
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
+};
+
+// Progress on stderr for work longer than about a second (SPEC section 5): nothing before
+// 1 s; then on a terminal one line rewritten with \r at most 10 times a second, and
+// elsewhere (a log file, a pipe) a plain line at most every 10 s.
+class Progress {
+ public:
+  Progress(std::string what, std::size_t total);
+  ~Progress();
+  void update(std::size_t done, const std::string& note = "");
+  void finish();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::string what_;
+  std::size_t total_;
+  bool tty_;
+  bool shown_ = false;
+  Clock::time_point start_, last_;
 };
 
 }  // namespace revdist::cli

@@ -26,7 +26,15 @@ std::string fmt(double v) {
   return buf;
 }
 
-std::string in_quotes(const std::string& s) { return "\"" + s + "\""; }
+// The range of numbers the engines handle with their rounding allowances intact: squares
+// and products of a few lengths must neither overflow nor underflow, and a profile's join
+// tolerance (1e-9 of its size) must stay above the rounding of its coordinates.
+constexpr double kMaxMagnitude = 1e100;
+constexpr double kMinProfileSize = 1e-100;
+constexpr double kMaxOffsetRatio = 1e6;    // largest |coordinate| / profile size
+constexpr double kMaxWeightRatio = 1e6;    // largest / smallest weight within one piece
+
+std::string in_quotes(const std::string& s) { return quote(s); }
 
 const char* kind_name(PieceKind k) {
   switch (k) {
@@ -62,6 +70,12 @@ std::vector<double> read_weights(const Json& j, std::size_t count, const JsonWhe
     if (!(v > 0)) where.fail("weight " + fmt(v) + " <= 0 (index " + std::to_string(i) + ")");
     w.push_back(v);
   }
+  // Only ratios matter (a common factor leaves the curve unchanged); a huge ratio pulls
+  // the curve into a near-cusp at one control point whose fit never ends (issue 10 item 17).
+  const auto [lo, hi] = std::minmax_element(w.begin(), w.end());
+  if (*hi > kMaxWeightRatio * *lo)
+    where.fail("weights " + fmt(*lo) + " and " + fmt(*hi) + " differ by more than a factor " +
+               fmt(kMaxWeightRatio) + " (the curve degenerates towards one control point)");
   return w;
 }
 
@@ -90,6 +104,20 @@ void check_knots(const Piece& p, const JsonWhere& where) {
                  std::to_string(deg));
     i = k;
   }
+}
+
+// A B-spline does not change under an affine map of its knots. Moving them to start at 0
+// and span [1, 2) keeps parameter-space thresholds of the fit meaningful (knots scaled by
+// 1e-100 made the spiral split run without end). Only exact operations are used: the
+// shift when t - t0 is exact for every knot, and a power-of-two scale.
+void normalize_knots(std::vector<double>& t) {
+  const double t0 = t.front();
+  bool exact_shift = true;
+  for (double v : t) exact_shift = exact_shift && (v - t0) + t0 == v && (v - t0) - v == -t0;
+  if (exact_shift)
+    for (double& v : t) v -= t0;
+  const int e = std::ilogb(t.back() - t.front());
+  for (double& v : t) v = std::ldexp(v, -e);
 }
 
 Piece read_piece(const Json& j, const JsonWhere& where) {
@@ -146,6 +174,7 @@ Piece read_piece(const Json& j, const JsonWhere& where) {
         p.knots.push_back(read_number(knots[i], sub(where, "knot " + std::to_string(i))));
       if (body.contains("weights")) p.weights = read_weights(body["weights"], p.points.size(), where);
       check_knots(p, where);
+      normalize_knots(p.knots);
       break;
     }
   }
@@ -168,12 +197,48 @@ void check_arcs(const Profile& profile, const std::string& item, const JsonWhere
   }
 }
 
+// Coordinates in the range the engines handle (see kMaxMagnitude); a curve piece whose
+// end control point is repeated has a zero end tangent (a singular point the spiral
+// split cannot start from).
+void check_magnitudes(const Profile& profile, const std::string& item, const JsonWhere& top) {
+  double big = 0;
+  for (std::size_t i = 0; i < profile.pieces.size(); ++i) {
+    const JsonWhere w{top.file, item + " piece " + std::to_string(i)};
+    for (const Vec2& q : profile.pieces[i].points) {
+      big = std::max({big, std::abs(q.x()), std::abs(q.y())});
+      if (std::max(std::abs(q.x()), std::abs(q.y())) > kMaxMagnitude)
+        w.fail("coordinate " + fmt(std::max(std::abs(q.x()), std::abs(q.y()))) + " beyond the supported range +-" +
+               fmt(kMaxMagnitude));
+    }
+  }
+  const double size = profile_size(profile);
+  const JsonWhere w{top.file, item};
+  if (size < kMinProfileSize)
+    w.fail("the profile's size " + fmt(size) + " is below the supported " + fmt(kMinProfileSize));
+  if (big > kMaxOffsetRatio * size)
+    w.fail("the profile (size " + fmt(size) + ") lies " + fmt(big) + " from the origin of its plane, more than " +
+           fmt(kMaxOffsetRatio) + " times its size: double rounding would exceed its tolerances");
+  const double tol = profile_tolerance(profile);
+  for (std::size_t i = 0; i < profile.pieces.size(); ++i) {
+    const Piece& p = profile.pieces[i];
+    if (p.kind != PieceKind::bezier && p.kind != PieceKind::bspline) continue;
+    const std::size_t n = p.points.size();
+    if (n < 3) continue;
+    const JsonWhere wp{top.file, item + " piece " + std::to_string(i)};
+    if ((p.points[1] - p.points[0]).norm() <= tol)
+      wp.fail("the first two control points coincide (a zero tangent at the start: split the piece or drop one)");
+    if ((p.points[n - 1] - p.points[n - 2]).norm() <= tol)
+      wp.fail("the last two control points coincide (a zero tangent at the end: split the piece or drop one)");
+  }
+}
+
 Profile read_profile(const Json& j, const std::string& item, const JsonWhere& top) {
   const JsonWhere w{top.file, item};
   if (!j.is_array() || j.empty()) w.fail("a profile must be a non-empty array of pieces");
   Profile profile;
   for (std::size_t i = 0; i < j.size(); ++i)
     profile.pieces.push_back(read_piece(j[i], {top.file, item + " piece " + std::to_string(i)}));
+  check_magnitudes(profile, item, top);
   check_arcs(profile, item, top);
   const std::string where = top.file + ": " + item;
   join_profile(profile, where);
@@ -273,7 +338,12 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
     if (n2 == 0) wq.fail("the zero quaternion is not a rotation");
     if (!(n2 >= DBL_MIN) || !std::isfinite(n2)) wq.fail("quaternion too small or too large to normalise (|q|^2 = " + fmt(n2) + ")");
   }
-  if (j.contains("translation")) inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));
+  if (j.contains("translation")) {
+    inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));
+    if (inst.pose.translation.cwiseAbs().maxCoeff() > kMaxMagnitude)
+      sub(w, "translation").fail("component " + fmt(inst.pose.translation.cwiseAbs().maxCoeff()) +
+                                 " beyond the supported range +-" + fmt(kMaxMagnitude));
+  }
   if (j.contains("motion")) inst.motion = read_motion(j["motion"], sub(w, "motion"));
   const SolidDef& s = c.solids[inst.solid];
   if (j.contains("time")) {
@@ -316,8 +386,20 @@ Profile profile_at(const SolidDef& solid, double time) {
   return out;
 }
 
+namespace {
+Case read_case_from(const Json& doc, const std::string& path, bool all_pairs_when_absent);
+}  // namespace
+
 Case read_case(const std::string& path, bool all_pairs_when_absent) {
-  const Json doc = read_json_file(path);
+  return read_case_from(read_json_file(path), path, all_pairs_when_absent);
+}
+
+Case read_case_text(const std::string& text, const std::string& path) {
+  return read_case_from(parse_json_text(text, path), path, true);
+}
+
+namespace {
+Case read_case_from(const Json& doc, const std::string& path, bool all_pairs_when_absent) {
   const JsonWhere top{path, ""};
   if (!doc.is_object()) top.fail("expected a JSON object");
   require_format(doc, "revdist/1", top);
@@ -347,8 +429,12 @@ Case read_case(const std::string& path, bool all_pairs_when_absent) {
     const SolidDef& s = c.solids[inst.solid];
     if (!s.deformable() || inst.time == std::floor(inst.time) || !checked.emplace(inst.solid, inst.time).second)
       continue;
-    check_profile(profile_at(s, inst.time),
-                  path + ": instance " + in_quotes(inst.name) + " (solid " + in_quotes(s.name) + " at time " + fmt(inst.time) + ")");
+    const std::string item = "instance " + in_quotes(inst.name) + " (solid " + in_quotes(s.name) + " at time " +
+                             fmt(inst.time) + ")";
+    const Profile blended = profile_at(s, inst.time);
+    check_magnitudes(blended, item, top);
+    check_arcs(blended, item, top);
+    check_profile(blended, path + ": " + item);
   }
   if (doc.contains("queries")) {
     const Json& qs = doc["queries"];
@@ -373,5 +459,6 @@ Case read_case(const std::string& path, bool all_pairs_when_absent) {
   }
   return c;
 }
+}  // namespace
 
 }  // namespace revdist

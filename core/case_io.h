@@ -31,6 +31,8 @@ namespace revdist {
 // the pairs, and n^2/2 listed queries would not fit in memory.
 // An instance's optional "motion" (core/motion.h) moves it over `revdist scene` frames.
 Case read_case(const std::string& path, bool all_pairs_when_absent = true);
+// The same on text in memory (the fuzz target's entry); path only names it in messages.
+Case read_case_text(const std::string& text, const std::string& path);
 
 // The profile of a solid at keyframe time s (clamped to [0, K-1]): control points and
 // weights blended linearly between keyframes floor(s) and ceil(s) (missing weights count

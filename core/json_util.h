@@ -10,8 +10,16 @@ namespace revdist {
 
 using Json = nlohmann::json;
 
-// Reads and parses a whole JSON file; InputError if it cannot be opened or is not JSON.
+// Reads and parses a whole JSON file; InputError if it cannot be opened, is not a
+// regular-sized text (more than 64 MiB, a NUL byte, a directory), is not JSON, nests
+// deeper than 64 levels or repeats a key inside one object.
 Json read_json_file(const std::string& path);
+// The same checks on text already in memory (path only names it in messages).
+Json parse_json_text(const std::string& text, const std::string& path);
+
+// s in double quotes with JSON escapes (control characters, quotes, backslashes), cut
+// after 80 bytes: a name from the input always prints as one readable line.
+std::string quote(const std::string& s);
 
 // Context for error messages: the file and a path inside it.
 struct JsonWhere {

@@ -76,6 +76,16 @@ const std::map<std::string, std::string> kBad = {
     {"wrong_format", R"(format: expected "revdist/1")"},
     {"wrong_point_count", R"(solid "can" piece 0: a line needs 2 points, got 3)"},
     {"zero_quaternion", R"(instance "a" rotation: the zero quaternion)"},
+    {"blend_arc_collinear", R"(instance "m" (solid "morph" at time 0.66666666666666663) piece 1: arc points are collinear)"},
+    {"duplicate_member_key", R"(instances[1].translation: duplicate key "translation")"},
+    {"duplicate_solid_key", R"(solids.s: duplicate key "s")"},
+    {"name_with_newline", R"(queries[0]: unknown instance "b\nY")"},
+    {"profile_scaled_1e300", R"(solid "big" piece 0: coordinate 1e+300 beyond the supported range)"},
+    {"profile_too_far_off", R"(solid "ring": the profile (size 2.8284271247461903) lies 100000001 from the origin)"},
+    {"repeated_end_point", R"(solid "s" piece 0: the last two control points coincide)"},
+    {"translation_overflow", R"(instance "b" translation: component 1e+300 beyond the supported range)"},
+    {"weight_ratio_huge", R"(solid "s" piece 0: weights 1 and 1e+300 differ by more than a factor 1000000)"},
+    {"weight_ratio_tiny", R"(solid "s" piece 0: weights 1e-300 and 1 differ by more than a factor 1000000)"},
 };
 
 TEST(CaseIo, EveryBadFileFailsWithOneNamedLine) {
