@@ -8,5 +8,6 @@ void add_circles_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_distance_command(CLI::App& app);
 void add_stress_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace revdist::cli

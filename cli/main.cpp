@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   revdist::cli::add_fit_command(app);
   revdist::cli::add_distance_command(app);
   revdist::cli::add_stress_command(app);
+  revdist::cli::add_compare_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
