@@ -58,8 +58,8 @@ double weight(const Piece& piece, std::size_t i) {
   return piece.weights.empty() ? 1.0 : piece.weights[i];
 }
 
-Window make_window(const Piece& piece, double u) {
-  Window w;
+// Fills w (reusing its storage) with the window of the span holding u.
+void make_window(const Piece& piece, double u, Window& w) {
   const int p = piece.degree;
   w.degree = p;
   std::size_t first = 0;  // index of the window's first control point
@@ -82,12 +82,20 @@ Window make_window(const Piece& piece, double u) {
     const double wi = weight(piece, i);
     w.c[j] = Hom(wi * piece.points[i].x(), wi * piece.points[i].y(), wi);
   }
+}
+
+Window make_window(const Piece& piece, double u) {
+  Window w;
+  make_window(piece, u, w);
   return w;
 }
 
 void spline_derivatives(const Piece& piece, double u, int n, Vec2* out) {
-  Window w = make_window(piece, u);
-  std::vector<Hom> scratch;
+  // Per-thread storage, reused: the distance query maps witness points onto
+  // the input curves with many evaluations, which allocated on every call.
+  thread_local Window w;
+  thread_local std::vector<Hom> scratch;
+  make_window(piece, u, w);
   Hom h[4];
   for (int k = 0; k <= n; ++k) {
     h[k] = w.degree >= 0 ? de_boor(w, u, scratch) : Hom::Zero();

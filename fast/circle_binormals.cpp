@@ -13,6 +13,7 @@
 // lines from such a point Q to the points of a in the plane through Q normal to b.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fast/circle_distance.h"
 #include "fast/circle_internal.h"
@@ -109,7 +110,66 @@ Vec3 on_b(const CircleFrame& b, double th) {
   return b.center + b.radius * (std::cos(th) * b.u + std::sin(th) * b.v);
 }
 
-std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infinite) {
+// Angle windows of b (θ in b's frame) outside which no needed line ends:
+// every point of b is at least max_len from circle a there, or the caller's
+// arc test rules the arc out. b is cut into 8 arcs, each held by a ball around
+// its chord's midpoint; an arc is dropped when its ball is max_len or more
+// from a (point-circle distance, closed form) or fails the test, and cut in 4
+// and tested again otherwise. Writes [lo, hi] pairs (merged, increasing),
+// returns their count, and the least distance bound over what was dropped for
+// distance (+inf when nothing).
+int near_windows(const CircleFrame& a, const CircleFrame& b, double max_len, const BinormalArcTest* test, double* win,
+                 double* dropped_lb) {
+  *dropped_lb = std::numeric_limits<double>::infinity();
+  // Rounding of the bound: a few ulps of the coordinates involved.
+  const double margin = 64 * kEps * (a.center.cwiseAbs().maxCoeff() + b.center.cwiseAbs().maxCoeff() + a.radius + b.radius);
+  // Arc [lo, lo + w] -> bound (+inf when the test drops it).
+  auto arc_bound = [&](double lo, double w) {
+    const double th = lo + 0.5 * w, half = 0.5 * w;
+    const Vec3 m = b.center + b.radius * std::cos(half) * (std::cos(th) * b.u + std::sin(th) * b.v);
+    const double r = b.radius * std::sin(half);
+    const Vec3 d = m - a.center;
+    const double h = d.dot(a.n);
+    const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
+    const double lb = std::sqrt(h * h + (rho - a.radius) * (rho - a.radius)) - r - margin;
+    if (lb < max_len && test && test->keep && !test->keep(test->ctx, m, r)) return std::numeric_limits<double>::infinity();
+    return lb;
+  };
+  auto dropped = [&](double lb) {
+    if (lb < max_len) return false;
+    if (lb < std::numeric_limits<double>::infinity()) *dropped_lb = std::min(*dropped_lb, lb);
+    return true;
+  };
+  int nw = 0;
+  const double w1 = 2 * kPi / 8, w2 = w1 / 4;
+  for (int i = 0; i < 8; ++i) {
+    if (dropped(arc_bound(-kPi + i * w1, w1))) continue;
+    for (int j = 0; j < 4; ++j) {
+      const double lo = -kPi + i * w1 + j * w2;
+      if (dropped(arc_bound(lo, w2))) continue;
+      if (nw > 0 && std::abs(win[2 * nw - 1] - lo) <= 1e-12) win[2 * nw - 1] = lo + w2;  // contiguous: merge
+      else {
+        win[2 * nw] = lo;
+        win[2 * nw + 1] = lo + w2;
+        ++nw;
+      }
+    }
+  }
+  // The last window may continue the first across the seam at ±π.
+  if (nw > 1 && win[0] == -kPi && std::abs(win[2 * nw - 1] - kPi) <= 1e-12) {
+    win[0] = win[2 * nw - 2] - 2 * kPi;
+    --nw;
+  }
+  return nw;
+}
+
+// All binormal lines of a and b, or (max_len finite) at least every one
+// shorter than max_len: roots are then sought only in b's near windows, and
+// *dropped_lb bounds the length of any line left out from below.
+std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infinite,
+                            double max_len = std::numeric_limits<double>::infinity(),
+                            double* dropped_lb = nullptr, const BinormalArcTest* test = nullptr) {
+  if (dropped_lb) *dropped_lb = std::numeric_limits<double>::infinity();
   *infinite = false;
   std::vector<Line> out;
   const double sigma = circle_pair_sigma(a_in, b_in);
@@ -121,7 +181,10 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     const double h = d.dot(a.n), px = d.dot(a.u), py = d.dot(a.v);
     const double rho = std::sqrt(px * px + py * py), R = a.radius * sigma;
     if (R == 0 || rho <= 8 * kEps * d.cwiseAbs().maxCoeff()) {
-      const double len = std::sqrt(h * h + R * R);
+      // Two points (R = 0): the segment between them, |d|, not its axial part;
+      // Q on a's axis: sqrt(h^2 + R^2) up to the rounding-sized rho.
+      const double e = rho - R;
+      const double len = std::sqrt(h * h + e * e);
       if (len > contact) out.push_back({0, a.center + a.radius * a.u, len / sigma});
       return out;
     }
@@ -183,8 +246,16 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     *infinite = true;
     return out;
   }
-  double th[20];
-  const int n = trig_poly_roots(phi, 8, th);
+  double th[16 * 17];
+  int n = 0;
+  if ((std::isfinite(max_len) || test) && dropped_lb) {
+    double win[2 * 32], dlb;
+    const int nw = near_windows(a, b, max_len, test, win, &dlb);
+    *dropped_lb = dlb;
+    for (int w = 0; w < nw; ++w) n += trig_poly_roots_window(phi, 8, win[2 * w], win[2 * w + 1], th + n);
+  } else {
+    n = trig_poly_roots(phi, 8, th);
+  }
   for (int i = 0; i < n; ++i) {
     for (double sg : {1.0, -1.0}) {
       double t = th[i];
@@ -248,6 +319,17 @@ std::vector<CircleBinormal> circle3_circle3_binormal_lines(const Circle3& a, con
   bool inf = false;
   const auto lines = all_lines(a, b, &inf);
   if (infinitely_many) *infinitely_many = inf;
+  return to_public(make_frame(b), lines);
+}
+
+std::vector<CircleBinormal> circle3_circle3_binormal_lines_within(const Circle3& a, const Circle3& b, double max_len,
+                                                                  bool* infinitely_many, double* dropped_lb,
+                                                                  const BinormalArcTest* arc_test) {
+  bool inf = false;
+  double dlb = std::numeric_limits<double>::infinity();
+  const auto lines = all_lines(a, b, &inf, max_len, &dlb, arc_test);
+  if (infinitely_many) *infinitely_many = inf;
+  if (dropped_lb) *dropped_lb = inf ? std::numeric_limits<double>::infinity() : dlb;
   return to_public(make_frame(b), lines);
 }
 

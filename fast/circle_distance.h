@@ -61,4 +61,21 @@ std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Ci
 std::vector<CircleBinormal> circle3_circle3_binormal_lines(const Circle3& a, const Circle3& b,
                                                            bool* infinitely_many = nullptr);
 
+// The same, restricted to what a pruning caller needs: at least every binormal
+// line shorter than max_len (longer ones may be returned too). The roots are
+// sought only on the arcs of b that come within max_len of a (closed-form ball
+// bounds on 32 arcs), so a short window costs a fraction of the whole circle.
+// *dropped_lb: a lower bound (>= max_len) on the distance from a to the arcs of
+// b left out, +inf when none was; in the infinitely-many case nothing is left out.
+// arc_test (optional): a further filter on arcs of b, false when no needed
+// line ends in the ball (centre, radius) that holds the arc (a Gauss-map
+// restriction, paper section 3.3); arcs it drops add nothing to *dropped_lb.
+struct BinormalArcTest {
+  bool (*keep)(const void* ctx, const Vec3& centre, double radius) = nullptr;
+  const void* ctx = nullptr;
+};
+std::vector<CircleBinormal> circle3_circle3_binormal_lines_within(const Circle3& a, const Circle3& b, double max_len,
+                                                                  bool* infinitely_many, double* dropped_lb,
+                                                                  const BinormalArcTest* arc_test = nullptr);
+
 }  // namespace revdist

@@ -181,6 +181,10 @@ int poly_roots_in(const double* a, int n, double lo, double hi, double tol_abs, 
 // kept when |p| at a local extremum is within 64nε·Σ|a_i|. The charts overlap,
 // so roots near the seam may appear twice. th must hold 2n entries.
 int trig_poly_roots(const double* a, int n, double* th);
+// The same restricted to the angle window [th0, th1] (th1 - th0 <= 2π; it may
+// cross the seam at ±π): every root in the window, possibly a few just outside
+// (the charts overlap), at most 2n. The same charts and tolerance as above.
+int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th);
 
 // Angles where ρ^2 = X^2 + Y^2 of circle p in q's frame is critical:
 // roots of (ρ^2)'/2 = X X' + Y Y', a quartic in t (at most 8 angles: two charts).

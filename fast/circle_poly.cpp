@@ -225,4 +225,26 @@ int trig_poly_roots(const double* a, int n, double* th) {
   return k;
 }
 
+int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th) {
+  double mag = 0;
+  for (int i = 0; i <= n; ++i) mag += std::abs(a[i]);
+  const double tol = 64 * n * kEps * mag;  // as in trig_poly_roots
+  const double lim = 1.25, th_lim = 2 * std::atan(lim);
+  double b[9], r[10];
+  for (int j = 0; j <= n; ++j) b[j] = ((n - j) % 2 ? -1 : 1) * a[n - j];  // p(-1/t') t'^n
+  int k = 0;
+  for (int chart = 0; chart < 2; ++chart) {
+    const double centre = chart ? kPi : 0.0;
+    // The window in the chart's angle, and its copy one turn down (it may wrap).
+    const double s = wrap_pi(th0 - centre), e = s + (th1 - th0);
+    for (double shift : {0.0, -2 * kPi}) {
+      const double x0 = std::max(s + shift, -th_lim), x1 = std::min(e + shift, th_lim);
+      if (!(x0 <= x1)) continue;
+      const int m = poly_roots_in(chart ? b : a, n, std::tan(0.5 * x0), std::tan(0.5 * x1), tol, r);
+      for (int i = 0; i < m && k < 2 * n; ++i) th[k++] = wrap_pi(2 * std::atan(r[i]) + centre);
+    }
+  }
+  return k;
+}
+
 }  // namespace revdist::circle_detail

@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
 #include "fast/cone_normals.h"
 
@@ -98,9 +99,16 @@ int cone_normals_from(const Patch& K, const Vec3& x, ConeNormal out[2]) {
 // patch boundary, which the boundary candidates hold. So members sampled around
 // q stand for the family: each joins a point of q to its nearest and farthest
 // points of p.
-std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q) {
+// max_len finite: only lines shorter than max_len are needed (a pruning
+// caller); *dropped_lb then bounds the left-out part of q from below.
+std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q, double max_len = kInf,
+                                           double* dropped_lb = nullptr, const BinormalArcTest* test = nullptr) {
   bool infinite = false;
-  auto lines = circle3_circle3_binormal_lines(p, q, &infinite);
+  double dlb = kInf;
+  auto lines = std::isfinite(max_len) || test
+                   ? circle3_circle3_binormal_lines_within(p, q, max_len, &infinite, &dlb, test)
+                   : circle3_circle3_binormal_lines(p, q, &infinite);
+  if (dropped_lb) *dropped_lb = dlb;
   if (!infinite) return lines;
   const Vec3 nq = q.normal.normalized(), np = p.normal.normalized();
   const Vec3 any = std::abs(nq.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -119,6 +127,37 @@ std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q) {
     }
   }
   return lines;
+}
+
+// The Gauss-map restriction of paper section 3.3 for a torus patch T: a line
+// normal to T's torus lies in a meridian plane of T and passes through the
+// arc's centre c there, so in T's (r, z) half-plane it leaves c in direction
+// psi and meets the torus at angles psi and psi + pi; it reaches the patch only
+// when one of them is in the arc's angular window. A ball (x, r) of points
+// projects into a disk of radius r (the map to (r, z) is 1-Lipschitz), whose
+// directions from c are within asin(r / |q - c|) of q's: the ball can hold the
+// other end of such a line only if that cone meets the double window.
+struct GaussWindow {
+  const Patch* T;
+  Vec2 mid;            // unit direction of the window's middle
+  double cos_h, sin_h; // of the window's half-width
+};
+GaussWindow gauss_window(const Patch& T) {
+  const double half = 0.5 * std::abs(T.sweep);
+  const double a = 0.5 * T.sweep;
+  const Vec2 mid(std::cos(a) * T.d0.x() - std::sin(a) * T.d0.y(), std::sin(a) * T.d0.x() + std::cos(a) * T.d0.y());
+  return {&T, mid, std::cos(half), std::sin(half)};
+}
+bool gauss_keep(const void* ctx, const Vec3& x, double r) {
+  const GaussWindow& g = *static_cast<const GaussWindow*>(ctx);
+  const Vec2 v = patch_local(*g.T, x) - g.T->c;
+  const double len = v.norm();
+  const double slack = 1e-9;  // directions: generous against rounding
+  if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;
+  const double sd = r / len, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
+  const double cos_lim = g.cos_h * cd - g.sin_h * sd;  // cos(half + delta)
+  if (cos_lim <= slack) return true;                    // the cone spans a right angle or more
+  return std::abs(v.dot(g.mid)) / len >= cos_lim - slack;
 }
 
 // Lines normal to torus patch T's major circle at m: the line from m along w, and
@@ -143,9 +182,16 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
     Vec2 dc;
     double dr;
     patch_disk(O, &dc, &dr);
-    double lb = circle3_circle3_distance(E, patch_disk_circle(O, dc)).distance - dr;
-    if (!O.straight) lb = std::max(lb, circle3_circle3_distance(E, patch_major_circle(O)).distance - O.rho);
+    // Closed-form bounds first (fast/circle_bound.h): most skips need no more.
+    const Circle3 od = patch_disk_circle(O, dc);
+    double lb = circle3_circle3_lower_bound(E, od) - dr;
+    if (!O.straight) lb = std::max(lb, circle3_circle3_lower_bound(E, patch_major_circle(O)) - O.rho);
     if (c.skip(lb)) return;
+    if (!c.need_g) {
+      lb = std::max(lb, circle3_circle3_distance(E, od).distance - dr);
+      if (!O.straight) lb = std::max(lb, circle3_circle3_distance(E, patch_major_circle(O)).distance - O.rho);
+      if (c.skip(lb)) return;
+    }
   }
   if (O.straight) {
     Vec3 pts[16];
@@ -160,15 +206,23 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
     }
     return;
   }
-  const auto lines = binormal_lines(E, patch_major_circle(O));
+  // Pruning allowed (the patches are proven apart, so no sign test needs every
+  // candidate): only the arcs of E that come within reach of the cutoff and
+  // that O's Gauss window can see; lines are enumerated on E (circle b).
+  double dropped = kInf;
+  const GaussWindow gw = gauss_window(O);
+  const BinormalArcTest test{gauss_keep, &gw};
+  const auto lines = c.need_g ? binormal_lines(patch_major_circle(O), E)
+                              : binormal_lines(patch_major_circle(O), E, c.cutoff + O.rho, &dropped, &test);
+  if (dropped < kInf) c.res.lower_skipped = std::min(c.res.lower_skipped, dropped - O.rho);
   for (const auto& l : lines) {
-    const Vec3& e = l.point_a;
+    const Vec3& e = l.point_b;
     add_e(e);
-    const Vec3 d = l.point_b - e;
+    const Vec3 d = l.point_a - e;
     const double len = d.norm();
     if (!(len > 0)) continue;
     Vec3 ps[2];
-    torus_points(O, l.point_b, d / len, ps);
+    torus_points(O, l.point_a, d / len, ps);
     for (const Vec3& p : ps)
       if (on_o(p)) add(e, p);
   }
@@ -180,7 +234,13 @@ void interior_vs_interior(Collector& c, double disk_lb) {
   if (!A.straight && !B.straight) {
     const double lb = circle3_circle3_distance(patch_major_circle(A), patch_major_circle(B)).distance - A.rho - B.rho;
     if (c.skip(std::max(lb, disk_lb))) return;
-    const auto lines = binormal_lines(patch_major_circle(A), patch_major_circle(B));
+    double dropped = kInf;
+    const GaussWindow gw = gauss_window(A);
+    const BinormalArcTest test{gauss_keep, &gw};
+    const auto lines = c.need_g ? binormal_lines(patch_major_circle(A), patch_major_circle(B))
+                                : binormal_lines(patch_major_circle(A), patch_major_circle(B), c.cutoff + A.rho + B.rho,
+                                                 &dropped, &test);
+    if (dropped < kInf) c.res.lower_skipped = std::min(c.res.lower_skipped, dropped - A.rho - B.rho);
     for (const auto& l : lines) {
       const Vec3 d = l.point_b - l.point_a;
       const double len = d.norm();
@@ -313,6 +373,17 @@ double plane_bound(const Patch& F, const Patch& O) {
   return -std::numeric_limits<double>::infinity();
 }
 
+double patch_pair_cheap_lower(const Patch& A, const Patch& B) {
+  Vec2 ca, cb;
+  double ra, rb;
+  patch_disk(A, &ca, &ra);
+  patch_disk(B, &cb, &rb);
+  double lb = circle3_circle3_lower_bound(patch_disk_circle(A, ca), patch_disk_circle(B, cb)) - ra - rb;
+  if (!A.straight && !B.straight)
+    lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(A), patch_major_circle(B)) - A.rho - B.rho);
+  return lb;
+}
+
 PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   PatchQuick q;
   q.lower = patch_disk_bound(A, B);
@@ -337,7 +408,84 @@ PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   return q;
 }
 
-PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff) {
+namespace {
+
+// A point of patch P at profile fraction u in [0, 1] and azimuth th (radians
+// about P's axis, from the frame (e1, e2) normal to it).
+Vec3 patch_point_at(const Patch& P, double u, double th, const Vec3& e1, const Vec3& e2, double* r_local) {
+  Vec2 q;
+  if (P.straight) {
+    q = P.p0 + u * (P.p1 - P.p0);
+  } else {
+    const double ang = u * P.sweep;
+    const double c = std::cos(ang), s = std::sin(ang);
+    q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
+  }
+  q.x() = std::max(q.x(), 0.0);
+  *r_local = q.x();
+  return P.o + q.x() * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+}
+
+}  // namespace
+
+bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, int* evaluations) {
+  // Q lies in its bounding torus (disk circle + disk radius) and on its whole
+  // surface (g_Q = 0). Every function used is 1-Lipschitz (distance to a
+  // circle, |(rho, z) - c| - rho, n . (rho, z) - off: the map to Q's (rho, z)
+  // half-plane does not increase distances), so over a box of P held by a ball
+  // (c, r) each stays within r of its value at c.
+  Vec2 dc;
+  double dr;
+  patch_disk(Q, &dc, &dr);
+  const Circle3 qd = patch_disk_circle(Q, dc);
+  const Vec3 qn = qd.normal.normalized();
+  auto circle_dist = [&](const Vec3& x) {
+    const Vec3 d = x - qd.center;
+    const double h = d.dot(qn);
+    const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
+    return std::sqrt(h * h + (rho - qd.radius) * (rho - qd.radius));
+  };
+  const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
+  const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
+  const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
+  struct Box { double u0, u1, t0, t1; };
+  Box stack[64];
+  int n = 0, evals = 0;
+  constexpr int kSectors = 16;
+  for (int k = kSectors - 1; k >= 0; --k)
+    stack[n++] = {0.0, 1.0, -M_PI + k * (2 * M_PI / kSectors), -M_PI + (k + 1) * (2 * M_PI / kSectors)};
+  while (n > 0) {
+    const Box b = stack[--n];
+    if (++evals > budget) {
+      *evaluations = evals;
+      return false;
+    }
+    double rl;
+    const Vec3 c = patch_point_at(P, 0.5 * (b.u0 + b.u1), 0.5 * (b.t0 + b.t1), e1, e2, &rl);
+    const double prof = 0.5 * (b.u1 - b.u0) * len, azi = 0.5 * (b.t1 - b.t0) * rmax;
+    const double r = prof + azi + margin;
+    if (circle_dist(c) - dr > r) continue;  // this box is outside Q's bounding torus
+    if (std::abs(patch_surface_function(Q, patch_local(Q, c))) > r) continue;  // off Q's surface
+    if (n + 2 > 64) {
+      *evaluations = evals;
+      return false;
+    }
+    if (prof >= azi) {
+      const double um = 0.5 * (b.u0 + b.u1);
+      stack[n++] = {b.u0, um, b.t0, b.t1};
+      stack[n++] = {um, b.u1, b.t0, b.t1};
+    } else {
+      const double tm = 0.5 * (b.t0 + b.t1);
+      stack[n++] = {b.u0, b.u1, b.t0, tm};
+      stack[n++] = {b.u0, b.u1, tm, b.t1};
+    }
+  }
+  *evaluations = evals;
+  return true;
+}
+
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower) {
   Vec3 ca, cb;
   const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
   const double scale = std::max({ea, eb, (ca - cb).norm(), 1e-300});
@@ -345,16 +493,27 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
   const double coord = std::max({ca.cwiseAbs().maxCoeff(), cb.cwiseAbs().maxCoeff(), scale});
   // Rounding of the surface functions: a few ulps of the coordinates.
   const double gtol = 1024 * std::numeric_limits<double>::epsilon() * coord;
-  // Disjoint bounding tori separate the patches: no sign tests, and
+  // Disjoint bounding tori (or any positive lower bound the caller knows, such
+  // as disjoint torus tubes) separate the patches: no sign tests, and
   // sub-problems that cannot beat the cutoff are skipped.
-  const double disk_lb = patch_disk_bound(A, B);
-  const bool need_g = !(disk_lb > gtol);
+  // The caller's bound (patch_pair_quick's) already includes the bounding tori.
+  const double disk_lb = std::isfinite(known_lower) ? known_lower : patch_disk_bound(A, B);
+  bool need_g = !(disk_lb > gtol);
+  if (need_g) {
+    // The bounding tori meet: try the cheap proof that the patches are apart
+    // (boxes of the smaller patch against the other's surface), else the sign
+    // tests over every candidate below.
+    int evals = 0;
+    const bool a_small = ea <= eb;
+    if (a_small ? patches_apart(A, B, gtol, 256, &evals) : patches_apart(B, A, gtol, 256, &evals)) need_g = false;
+  }
   Collector c{A, B, 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() * coord, cutoff, need_g, {}};
 
   const Circle3 ea_c[2] = {patch_end_circle(A, 0), patch_end_circle(A, 1)};
   const Circle3 eb_c[2] = {patch_end_circle(B, 0), patch_end_circle(B, 1)};
   for (const auto& e : ea_c)
     for (const auto& f : eb_c) {
+      if (c.skip(circle3_circle3_lower_bound(e, f))) continue;  // closed form first
       const auto r = circle3_circle3_distance(e, f);
       c.pair(r.point_a, r.point_b);
       c.point_a(r.point_a);

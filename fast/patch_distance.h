@@ -44,11 +44,23 @@ struct PatchPairResult {
   double lower_skipped = std::numeric_limits<double>::infinity();
 };
 
-// cutoff: when the patches' bounding tori are disjoint, parts of the
-// enumeration proven (by circle distances) to stay at or above cutoff are
-// skipped; pass the caller's current upper bound. +inf: everything.
+// cutoff: when the patches are proven apart (disjoint bounding tori, or
+// known_lower > rounding), parts of the enumeration proven (by circle
+// distances) to stay at or above cutoff are skipped; pass the caller's current
+// upper bound. +inf: everything. known_lower: a lower bound on the patches'
+// distance the caller already has (patch_pair_quick's), -inf when none.
 PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
-                                    double cutoff = std::numeric_limits<double>::infinity());
+                                    double cutoff = std::numeric_limits<double>::infinity(),
+                                    double known_lower = -std::numeric_limits<double>::infinity());
+
+// A cheap proof that patches P and Q do not meet (no common point), for pairs
+// whose bounding tori meet: P is cut into boxes (profile range x azimuth
+// range, 16 sectors to start), each held by a ball; a box is cleared when its
+// ball misses Q's bounding torus or Q's whole surface (1-Lipschitz functions
+// evaluated at the ball's centre, `margin` for rounding), else split. True
+// when every box clears within `budget` evaluations (*evaluations says how
+// many); false means "not proven", not "they meet".
+bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, int* evaluations);
 
 // Lower bound on the distance between two patches from their bounding tori.
 double patch_disk_bound(const Patch& A, const Patch& B);
@@ -65,5 +77,10 @@ struct PatchQuick {
   Vec3 x = Vec3::Zero(), y = Vec3::Zero();
 };
 PatchQuick patch_pair_quick(const Patch& A, const Patch& B);
+
+// A lower bound of the same kind as patch_pair_quick's, in closed form (no
+// iteration: fast/circle_bound.h on the bounding tori and the major circles);
+// never above patch_pair_quick(A, B).lower except by rounding.
+double patch_pair_cheap_lower(const Patch& A, const Patch& B);
 
 }  // namespace revdist

@@ -25,6 +25,7 @@
 
 #include "core/curve_eval.h"
 #include "fast/biarc_fit.h"
+#include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
 #include "fast/patch.h"
 #include "fast/patch_distance.h"
@@ -216,20 +217,26 @@ struct Solid {
 struct Entry {
   double lb;
   std::int32_t a, b;
+  bool tight;  // lb is the tight bound (pair_bound), not only the cheap one
   bool operator<(const Entry& o) const { return lb > o.lb; }  // min-heap
 };
 
-// Lower bound between two parts: their bounding tori (disks rotated); when
-// both parts carry a fit and that is not enough to reach `cutoff`, the fits'
-// patches (each within its eps of the part), whose cheap bounds include the
-// tube around a torus patch's major circle (paper: every node's toroidal
-// patches bound it).
+// The cheap lower bound between two parts, in closed form (no iteration):
+// their bounding tori (disks rotated) are at least the closed-form circle
+// bound of their centre circles minus the disk radii apart. Used when a pair
+// is queued; the tight bound is computed only if the pair is popped.
+double cheap_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
+  return circle3_circle3_lower_bound(A.disk_circle(pa), B.disk_circle(pb)) - pa.disk_r - pb.disk_r;
+}
+
+// The tight lower bound between two parts: their bounding tori by the exact
+// circle distance; when both parts carry a fit and that is not enough to
+// reach `cutoff`, the fits' patches (each within its eps of the part), whose
+// cheap bounds include the tube around a torus patch's major circle (paper:
+// every node's toroidal patches bound it).
 double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb, double cutoff) {
   const Circle3 ca = A.disk_circle(pa), cb = B.disk_circle(pb);
-  // Bounding spheres first: cheaper than the circle distance.
-  const double sphere = (ca.center - cb.center).norm() - (ca.radius + pa.disk_r) - (cb.radius + pb.disk_r);
-  if (sphere >= cutoff) return sphere;
-  double lb = std::max(sphere, circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r);
+  double lb = circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r;
   if (lb >= cutoff || !pa.bound_fit || !pb.bound_fit) return lb;
   if (!(pa.fit.eps < kInf && pb.fit.eps < kInf)) return lb;
   double fits = kInf;
@@ -238,7 +245,9 @@ double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb
     const Patch P = make_patch(pa.fit.arc[i], A.s.R, A.s.t);
     for (int j = 0; j < pb.fit.arcs; ++j) {
       if (pb.fit.arc[j].length <= 0) continue;
-      fits = std::min(fits, patch_pair_quick(P, make_patch(pb.fit.arc[j], B.s.R, B.s.t)).lower);
+      const Patch Q = make_patch(pb.fit.arc[j], B.s.R, B.s.t);
+      const double cheap = patch_pair_cheap_lower(P, Q);
+      fits = std::min(fits, cheap - pa.fit.eps - pb.fit.eps >= cutoff ? cheap : patch_pair_quick(P, Q).lower);
     }
   }
   return std::max(lb, fits - pa.fit.eps - pb.fit.eps);
@@ -299,14 +308,18 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   }
 
   std::priority_queue<Entry> heap;
-  heap.push({pair_bound(A, A.parts[0], B, B.parts[0], kInf), 0, 0});
+  heap.push({cheap_bound(A, A.parts[0], B, B.parts[0]) - round, 0, 0, false});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
   bool unresolved = false;
 
+  // Pairs are queued with their cheap bound; the tight one is computed when
+  // a pair reaches the top of the queue, so pairs that a later upper bound
+  // retires never pay for it. Every lower bound carries the same rounding
+  // allowance (`round`).
   auto push_pair = [&](std::int32_t ia, std::int32_t ib) {
-    const double lb = pair_bound(A, A.parts[ia], B, B.parts[ib], cut());
+    const double lb = cheap_bound(A, A.parts[ia], B, B.parts[ib]) - round;
     if (lb >= cut()) settled_lb = std::min(settled_lb, lb);
-    else heap.push({lb, ia, ib});
+    else heap.push({lb, ia, ib, false});
   };
   // Replaces pair e by the pairs of one side's children.
   auto split_pair = [&](const Entry& e, bool split_a) {
@@ -329,6 +342,18 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       break;
     }
     heap.pop();
+    if (!e.tight) {
+      ++st.bounds;
+      const double lb = std::max(e.lb, pair_bound(A, A.parts[e.a], B, B.parts[e.b], cut()) - round);
+      if (lb >= cut()) {
+        settled_lb = std::min(settled_lb, lb);
+        continue;
+      }
+      if (!heap.empty() && lb > heap.top().lb) {
+        heap.push({lb, e.a, e.b, true});
+        continue;
+      }
+    }
     if (++st.node_pairs > opt.max_node_pairs) {
       res.reason = "work budget exhausted";
       settled_lb = std::min(settled_lb, e.lb);
@@ -364,15 +389,17 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         }
         if (quick.exact) {
           ++st.quick_pairs;
-          offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
+          if (quick.lower - fa.eps - fb.eps < ub) offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
           lb_pair = std::min(lb_pair, disk);
           continue;
         }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round);
-        if (r.found) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
+        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round, quick.lower);
+        // The true points are within the fits' eps of the patch points: map
+        // them (a Newton solve on the input curve) only when they may improve.
+        if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
           const double d = std::min(r.found ? r.upper : kInf, r.lower_skipped);
           lb_pair = std::min(lb_pair, std::max(disk, d - fa.eps - fb.eps - round));

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <random>
+#include <cstdio>
 #include <vector>
 
 #include "core/arc2.h"
@@ -15,9 +16,12 @@
 
 namespace revdist::testing_util {
 
+// Printed, so that a failure can be replayed with REVDIST_SEED.
 inline std::uint64_t test_seed(std::uint64_t fallback) {
   const char* s = std::getenv("REVDIST_SEED");
-  return s ? std::strtoull(s, nullptr, 10) : fallback;
+  const std::uint64_t seed = s ? std::strtoull(s, nullptr, 10) : fallback;
+  std::printf("[ seed     ] REVDIST_SEED=%llu\n", static_cast<unsigned long long>(seed));
+  return seed;
 }
 
 inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }

@@ -198,13 +198,38 @@ TEST(BiarcTree, RebuildReusesStorageAndMatches) {
   std::mt19937_64 rng(test_seed(5));
   Profile p;
   p.pieces.push_back(random_bezier(rng, true));
+  // A larger tree first, so the storage holds stale nodes and fits when p is rebuilt into it.
+  Profile big;
+  big.pieces.push_back(random_bezier(rng, true));
   BiarcTree tree;
+  rebuild_biarc_tree(big, 1e-7, tree);
+  ASSERT_GT(tree.nodes.size(), build_biarc_tree(p, 1e-5).nodes.size()) << "the stale tree must be the larger one";
   rebuild_biarc_tree(p, 1e-5, tree);
   const auto* nodes = tree.nodes.data();
-  const auto count = tree.nodes.size();
   rebuild_biarc_tree(p, 1e-5, tree);
   EXPECT_EQ(tree.nodes.data(), nodes) << "rebuild reallocated";
-  EXPECT_EQ(tree.nodes.size(), count);
+  // The rebuilt tree is the freshly built one, bit for bit (no stale entry survives).
+  const BiarcTree fresh = build_biarc_tree(p, 1e-5);
+  ASSERT_EQ(tree.nodes.size(), fresh.nodes.size());
+  ASSERT_EQ(tree.fits.size(), fresh.fits.size());
+  for (std::size_t i = 0; i < fresh.nodes.size(); ++i) {
+    const BiarcNode &x = tree.nodes[i], &y = fresh.nodes[i];
+    EXPECT_TRUE(x.seg_a == y.seg_a && x.seg_b == y.seg_b && x.radius == y.radius && x.child == y.child &&
+                x.fit == y.fit)
+        << "node " << i;
+  }
+  for (std::size_t i = 0; i < fresh.fits.size(); ++i) {
+    const BiarcFit &x = tree.fits[i], &y = fresh.fits[i];
+    bool same = x.eps == y.eps && x.u0 == y.u0 && x.u1 == y.u1 && x.piece == y.piece && x.kind == y.kind &&
+                x.arcs == y.arcs && x.depth == y.depth;
+    for (int k = 0; k < 2; ++k)
+      same = same && x.arc[k].start == y.arc[k].start && x.arc[k].tangent == y.arc[k].tangent &&
+             x.arc[k].curvature == y.arc[k].curvature && x.arc[k].length == y.arc[k].length;
+    EXPECT_TRUE(same) << "fit " << i;
+  }
+  EXPECT_EQ(tree.max_error, fresh.max_error);
+  EXPECT_EQ(tree.slack, fresh.slack);
+  EXPECT_EQ(tree.spirals.size(), fresh.spirals.size());
 }
 
 TEST(BiarcTree, EmptyAndDegenerateProfiles) {

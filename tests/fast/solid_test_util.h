@@ -344,7 +344,11 @@ inline void expect_certificates(const PosedSolid& A, const PosedSolid& B, const 
   const double round = 1e-12 * scale;  // rounding of the world transform and the bracket arithmetic
   EXPECT_LE(r.lower, r.upper) << what << " " << describe(r);
   EXPECT_GE(r.lower, 0.0) << what;
-  if (!std::isfinite(r.upper)) return;
+  // SPEC 6: an answer always carries a finite bracket (issue 10, item 15).
+  if (!std::isfinite(r.upper)) {
+    ADD_FAILURE() << what << " no finite upper bound: " << describe(r);
+    return;
+  }
   EXPECT_TRUE(r.lower <= r.distance && r.distance <= r.upper) << what << " " << describe(r);
   const Vec2 la = local_rz(A, r.point_a), lb = local_rz(B, r.point_b);
   if (r.overlap) {

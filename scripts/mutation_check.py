@@ -1,0 +1,196 @@
+#!/usr/bin/env python3
+"""Mutation check: does the default test run catch a broken engine? (issue 10)
+
+Copies the source tree to a scratch folder, breaks the engine on purpose one
+mutant at a time (drop an eps from a lower bound, flip a sign in a kernel, skip
+a candidate class, ...), rebuilds there and runs the default tests
+(ctest -LE stress). A mutant is caught when some test fails. The real tree is
+never touched. Not part of the default run: it rebuilds once per mutant.
+
+Mutation sites are found by exact text patterns. When the code changes and a
+pattern no longer matches (or matches more than once), the mutant is reported
+STALE with its file and pattern, so whoever changed the code can point it at
+the new site; the other mutants still run.
+
+  scripts/mutation_check.py                 all mutants, full default suite
+  scripts/mutation_check.py --list          the mutants and whether their patterns match
+  scripts/mutation_check.py -m lower_eps    one mutant (repeatable)
+  scripts/mutation_check.py -R 'Solid'      restrict ctest to a regex (faster, weaker)
+Exit status: 0 when every mutant ran and was caught, 1 otherwise.
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# (name, file, pattern, replacement, what it breaks). Patterns are literal text
+# and must occur exactly once in the file.
+MUTANTS = [
+    ("lower_eps", "fast/solid_distance.cpp",
+     "d - fa.eps - fb.eps - round", "d - fb.eps - round",
+     "leaf lower bound forgets A's fit error eps"),
+    ("node_bound_radius", "fast/solid_distance.cpp",
+     "circle3_circle3_distance(ca, cb).distance - pa.disk_r - pb.disk_r",
+     "circle3_circle3_distance(ca, cb).distance - pa.disk_r",
+     "node-pair lower bound forgets B's bounding-torus tube radius"),
+    ("pair_bound_eps", "fast/solid_distance.cpp",
+     "return std::max(lb, fits - pa.fit.eps - pb.fit.eps);",
+     "return std::max(lb, fits - pa.fit.eps);",
+     "node-pair bound from the fits forgets B's eps"),
+    ("no_rounding", "fast/solid_distance.cpp",
+     "const double round = 256 * DBL_EPSILON * coord;", "const double round = 0.0 * coord;",
+     "lower bounds lose their rounding allowance"),
+    ("containment_ignored", "fast/solid_distance.cpp",
+     "if (containment_unknown) lb = 0.0;", "if (false) lb = 0.0;",
+     "undecided containment still reports the surface distance as lower bound"),
+    ("point_circle_sign", "fast/circle_distance.cpp",
+     "const double e = rho - R;", "const double e = rho + R;",
+     "circle kernel: point-circle distance to the far side (sign flip)"),
+    ("parallel_nested_sign", "fast/circle_distance.cpp",
+     "d2 = std::abs(Rp - Rq) - offset;", "d2 = std::abs(Rp - Rq) + offset;",
+     "circle kernel: nested parallel circles, offset added (sign flip)"),
+    ("skip_boundary_interior_a", "fast/patch_distance.cpp",
+     "for (const auto& e : ea_c) boundary_vs_interior(c, e, true);", "",
+     "patch kernel skips A's boundary circles against B's interior"),
+    ("skip_interior_interior", "fast/patch_distance.cpp",
+     "interior_vs_interior(c, disk_lb);", "",
+     "patch kernel skips the interior-interior candidates (binormals, cone normals)"),
+    ("degenerate_separated", "fast/patch_distance.cpp",
+     "c.res.separated = !c.res.degenerate && (", "c.res.separated = (",
+     "patch kernel calls a degenerate (continuum) pair separated"),
+    ("binormal_far_branch", "fast/circle_binormals.cpp",
+     "for (double sg : {1.0, -1.0}) {\n      double t = th[i];", "for (double sg : {1.0}) {\n      double t = th[i];",
+     "binormal lines: far branch dropped"),
+    ("lens_half_tree", "fast/biarc_tree.cpp",
+     "f.eps = lens.hypotheses_ok ? lens.width + slack", "f.eps = lens.hypotheses_ok ? 0.5 * lens.width + slack",
+     "tree builder claims half the proven lens width"),
+    ("spiral_skip_kappa_prime", "fast/spiral_split.cpp",
+     "for (int f = 0; f < 4; ++f) {", "for (int f = 0; f < 3; ++f) {",
+     "spiral split ignores zeros of the curvature's derivative"),
+]
+
+
+def run(cmd, cwd, log, timeout=None):
+    with open(log, "a") as out:
+        out.write("\n$ " + " ".join(cmd) + "\n")
+        out.flush()
+        try:
+            return subprocess.run(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            return 124
+
+
+def copy_tree(dst):
+    files = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
+                           check=True, capture_output=True).stdout.decode().split("\0")
+    for f in files:
+        if not f or not os.path.isfile(os.path.join(ROOT, f)):
+            continue
+        d = os.path.join(dst, f)
+        os.makedirs(os.path.dirname(d), exist_ok=True)
+        if not os.path.exists(d) or open(os.path.join(ROOT, f), "rb").read() != open(d, "rb").read():
+            shutil.copy2(os.path.join(ROOT, f), d)
+
+
+def pattern_status(src, m):
+    path = os.path.join(src, m[1])
+    if not os.path.exists(path):
+        return "STALE: file %s not found" % m[1]
+    n = open(path).read().count(m[2])
+    if n != 1:
+        return "STALE: pattern %s %s in %s" % (repr(m[2]), "not found" if n == 0 else "found %d times" % n, m[1])
+    return ""
+
+
+def failed_tests(log_text):
+    # ctest prints "  12 - Name (Failed)" lines after "The following tests FAILED:".
+    tail = log_text.split("The following tests FAILED:")[-1] if "The following tests FAILED:" in log_text else ""
+    return re.findall(r"\d+ - (\S+) \((?:Failed|Timeout|SEGFAULT|Subprocess aborted|Exception|Child aborted)", tail)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dir", default=os.environ.get("REVDIST_MUTANT_DIR", "/tmp/revdist-mutants"))
+    ap.add_argument("-m", "--mutant", action="append", help="run only these mutants")
+    ap.add_argument("-R", "--regex", help="ctest -R: only tests matching")
+    ap.add_argument("-j", "--jobs", type=int, default=2)
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("--no-baseline", action="store_true", help="skip the unmutated run (it must pass)")
+    a = ap.parse_args()
+
+    mutants = [m for m in MUTANTS if not a.mutant or m[0] in a.mutant]
+    if a.list:
+        for m in mutants:
+            print("%-26s %-28s %s" % (m[0], m[1], pattern_status(ROOT, m) or "ok: " + m[4]))
+        return 0
+    src, build = os.path.join(a.dir, "src"), os.path.join(a.dir, "build")
+    log = os.path.join(a.dir, "mutation.log")
+    os.makedirs(src, exist_ok=True)
+    open(log, "w").close()
+    copy_tree(src)
+    cfg = ["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DREVDIST_BUILD_BENCHMARKS=OFF"]
+    if shutil.which("ccache"):
+        cfg.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
+    ctest = ["ctest", "--test-dir", build, "-LE", "stress", "-j%d" % a.jobs, "--timeout", "900"]
+    if a.regex:
+        ctest += ["-R", a.regex]
+    print("scratch tree %s, log %s" % (a.dir, log), flush=True)
+    if run(cfg, src, log) != 0 or run(["cmake", "--build", build, "-j%d" % a.jobs], src, log) != 0:
+        print("the unmutated tree does not build; see " + log)
+        return 1
+    if not a.no_baseline:
+        t0 = time.time()
+        if run(ctest, src, log) != 0:
+            print("the unmutated tree fails its tests; see " + log)
+            return 1
+        print("baseline: tests pass (%.0f s)" % (time.time() - t0), flush=True)
+
+    rows, all_caught = [], True
+    for m in mutants:
+        name, rel, pat, rep, what = m
+        stale = pattern_status(src, m)
+        if stale:
+            rows.append((name, rel, stale, ""))
+            all_caught = False
+            print("%-26s %s" % (name, stale), flush=True)
+            continue
+        path = os.path.join(src, rel)
+        original = open(path).read()
+        open(path, "w").write(original.replace(pat, rep))
+        start = len(open(log).read())
+        t0 = time.time()
+        try:
+            if run(["cmake", "--build", build, "-j%d" % a.jobs], src, log) != 0:
+                verdict, tests = "BUILD FAILED (fix the mutant)", ""
+                all_caught = False
+            else:
+                rc = run(ctest + ["--stop-on-failure"], src, log)
+                text = open(log).read()[start:]
+                failed = failed_tests(text)
+                if rc != 0:
+                    verdict, tests = "caught", ", ".join(failed[:4]) + (" ..." if len(failed) > 4 else "")
+                else:
+                    verdict, tests = "SURVIVED", ""
+                    all_caught = False
+        finally:
+            open(path, "w").write(original)
+        rows.append((name, rel, verdict, tests))
+        print("%-26s %-9s %4.0f s  %s" % (name, verdict, time.time() - t0, tests), flush=True)
+    # Leave the scratch build matching the real tree again.
+    run(["cmake", "--build", build, "-j%d" % a.jobs], src, log)
+
+    print("\n| mutant | file | what it breaks | result | first failing tests |")
+    print("|---|---|---|---|---|")
+    whats = {m[0]: m[4] for m in MUTANTS}
+    for name, rel, verdict, tests in rows:
+        print("| %s | %s | %s | %s | %s |" % (name, rel, whats[name], verdict, tests))
+    return 0 if all_caught else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
