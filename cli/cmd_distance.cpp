@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "cli/commands.h"
@@ -25,6 +26,7 @@ struct Options {
   std::string file;
   double eps = 1e-5;
   double tol = 1e-6;
+  bool tol_given = false;  // --engine exact defaults to 1e-9 x the query's scale instead
   std::string engine = "fast";
   bool json = false;
 };
@@ -75,17 +77,39 @@ class FastEngine {
 // The certified engine (exact/solid_distance_exact.h) works on the input
 // curves themselves (no biarc trees, so --eps does not apply): lower/upper are
 // doubles rounded outward from a proven interval; "converged" means
-// upper - lower <= tol.
+// upper - lower <= tol, tol = --tol, or 1e-9 x the query's scale when not given.
+// stats keeps fast's keys with the exact engine's meaning: node_pairs = parameter
+// boxes bounded, leaf_pairs = element pairs (profile element of a x of b),
+// patch_pairs = element pairs searched by branch and bound, quick_pairs =
+// element pairs settled in closed form (tube against tube), refined_parts =
+// boxes re-bounded on MPFI near contact.
 class ExactEngine {
  public:
-  ExactEngine(const Case& c, const Options& o) : c_(c), tol_(o.tol) { xo_.absolute_width = o.tol; }
+  ExactEngine(const Case& c, const Options& o) : c_(c), o_(o) {
+    if (o.tol_given) xo_.absolute_width = o.tol;
+    xo_.relative_width = 1e-9;
+  }
   Answer query(std::size_t ia, std::size_t ib) const {
     const Instance& ins_a = c_.instances[ia];
     const Instance& ins_b = c_.instances[ib];
     const Profile pa = profile_at(c_.solids[ins_a.solid], ins_a.time);
     const Profile pb = profile_at(c_.solids[ins_b.solid], ins_b.time);
-    const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo_);
-    const bool converged = r.certified && r.upper - r.lower <= tol_;
+    ExactSolidOptions xo = xo_;
+    // A query running past a second shows its bracket on stderr: plain lines
+    // when stderr is not a terminal (logs), one rewritten line when it is.
+    const bool tty = isatty(fileno(stderr));
+    bool shown = false;
+    xo.progress = [&](const ExactProgress& p) {
+      std::fprintf(stderr, "%sdistance %s-%s: %.1f s, %ld boxes, [%.17g, %.17g] width %.3g (target %.3g)%s",
+                   tty ? "\r" : "", ins_a.name.c_str(), ins_b.name.c_str(), p.seconds, p.boxes, p.lower, p.upper,
+                   p.upper - p.lower, p.target_width, tty ? "" : "\n");
+      std::fflush(stderr);
+      shown = true;
+    };
+    const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo);
+    if (shown && tty) std::fprintf(stderr, "\n");
+    const double tol = o_.tol_given ? o_.tol : 1e-9 * r.scale;
+    const bool converged = r.certified && r.upper - r.lower <= tol;
     const double distance = r.certified ? 0.5 * r.lower + 0.5 * r.upper : r.upper;
     const double us = r.time_ms * 1e3;
     Answer a;
@@ -97,9 +121,19 @@ class ExactEngine {
               {"overlap", r.overlap},
               {"converged", converged},
               {"certified", r.certified},
+              {"tol", tol},
+              {"scale", r.scale},
               {"point_a", vec_json(r.point_a)},
               {"point_b", vec_json(r.point_b)},
-              {"stats", {{"boxes", r.boxes}, {"time_us", us}}}};
+              {"stats", {{"node_pairs", r.boxes},
+                         {"leaf_pairs", r.element_pairs},
+                         {"patch_pairs", r.searched_pairs},
+                         {"quick_pairs", r.closed_form_pairs},
+                         {"refined_parts", r.mpfi_boxes},
+                         {"boxes", r.boxes},
+                         {"mpfi_boxes", r.mpfi_boxes},
+                         {"closed_form_pairs", r.closed_form_pairs},
+                         {"time_us", us}}}};
     if (!r.reason.empty()) a.json["reason"] = r.reason;
     a.row = {ins_a.name, ins_b.name, full(distance), full(r.lower), full(r.upper), yes_no(r.overlap),
              converged ? "yes" : "no (" + r.reason + ")", std::to_string(r.boxes), fixed_digits(us, 4)};
@@ -108,7 +142,7 @@ class ExactEngine {
 
  private:
   const Case& c_;
-  double tol_;
+  const Options& o_;
   ExactSolidOptions xo_;
 };
 
@@ -130,8 +164,11 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   }
   if (progress_shown) std::fprintf(stderr, "\n");
   if (o.json) {
-    const Json doc{{"format", "revdist-result/1"}, {"engine", o.engine}, {"eps", o.eps},
-                   {"tol", o.tol},                 {"results", results}};
+    Json doc{{"format", "revdist-result/1"}, {"engine", o.engine}, {"eps", o.eps}, {"tol", o.tol}, {"results", results}};
+    if (o.engine == "exact" && !o.tol_given) {  // 1e-9 x each query's scale; the absolute one is in its "tol"
+      doc["tol"] = 1e-9;
+      doc["tol_relative_to_scale"] = true;
+    }
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
     std::printf("%s", table.str().c_str());
@@ -155,11 +192,15 @@ void add_distance_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("distance", "Minimum distance for every query of a revdist/1 case");
   cmd->add_option("CASE", opts->file, "revdist/1 JSON case")->required();
   cmd->add_option("--eps", opts->eps, "biarc approximation bound (proven)")->capture_default_str();
-  cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol")->capture_default_str();
+  cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol (exact engine: default 1e-9 x the query's scale)")
+      ->capture_default_str();
   cmd->add_option("--engine", opts->engine, "fast (double) or exact (certified)")
       ->check(CLI::IsMember({"fast", "exact"}));
   cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-result/1)");
-  cmd->callback([opts] { run(*opts); });
+  cmd->callback([opts, cmd] {
+    opts->tol_given = cmd->count("--tol") > 0;
+    run(*opts);
+  });
 }
 
 }  // namespace revdist::cli

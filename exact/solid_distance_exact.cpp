@@ -53,12 +53,16 @@
 #include "exact/solid_distance_exact.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <queue>
 #include <vector>
 
+#include "exact/circle_distance_exact.h"
+#include "exact/double_interval.h"
 #include "exact/solid_exact_internal.h"
 
 namespace revdist {
@@ -70,12 +74,36 @@ using fit_audit_detail::pi;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-Ia iv(double lo, double hi) {
+using exact_detail::Di;
+
+// The interval-generic vocabulary of the box bounds: the same formulas run on Di
+// (cheap, ~1e-16 looser) and on Ia (128-bit MPFI, the fallback near contact).
+template <class I>
+I iv(double lo, double hi);
+template <>
+Ia iv<Ia>(double lo, double hi) {
   Ia r;
   mpfi_interv_d(r.p(), lo, hi);
   return r;
 }
-Ia sym(double h) { return iv(-h, h); }
+template <>
+Di iv<Di>(double lo, double hi) {
+  return {lo, hi};
+}
+template <class I>
+I sym(double h) {
+  return iv<I>(-h, h);
+}
+template <class I>
+I to(const Ia& x);
+template <>
+Ia to<Ia>(const Ia& x) {
+  return x;
+}
+template <>
+Di to<Di>(const Ia& x) {
+  return {x.lo(), x.hi()};  // lo()/hi() round outward
+}
 
 // a intersected with b (both enclose the same range, so the meet is not empty;
 // if rounding ever made it so, a alone is kept).
@@ -85,14 +113,99 @@ Ia meet(const Ia& a, const Ia& b) {
   if (mpfi_is_empty(r.p())) return a;
   return r;
 }
+using exact_detail::meet;
+using fit_audit_detail::sqrt_nonneg;
+using exact_detail::sqrt_nonneg;
 
 // A lower bound of |x| over the interval, rounded down.
-double mig(const Ia& x) {
+template <class I>
+double mig(const I& x) {
   if (x.pos()) return x.lo();
   if (x.neg()) return -x.hi();
   return 0.0;
 }
-double sq_lo(double m) { return (Ia(m) * Ia(m)).lo(); }
+template <class I>
+double sq_lo(double m) {
+  return (I(m) * I(m)).lo();
+}
+
+// An element and a frame with their enclosures converted to I.
+template <class I>
+struct ElemT {
+  ElemKind kind = ElemKind::curve;
+  std::vector<I> x, y, w, dx, dy, dw;
+  I ax, ay, bx, by, cx, cy, R;
+};
+template <class I>
+ElemT<I> convert(const Element& e) {
+  ElemT<I> o;
+  o.kind = e.kind;
+  auto cv = [](const Poly& p) {
+    std::vector<I> v;
+    for (const Ia& c : p) v.push_back(to<I>(c));
+    return v;
+  };
+  o.x = cv(e.seg.x), o.y = cv(e.seg.y), o.w = cv(e.seg.w);
+  o.dx = cv(e.dx), o.dy = cv(e.dy), o.dw = cv(e.dw);
+  o.ax = to<I>(e.a.x), o.ay = to<I>(e.a.y), o.bx = to<I>(e.b.x), o.by = to<I>(e.b.y);
+  o.cx = to<I>(e.c.x), o.cy = to<I>(e.c.y), o.R = to<I>(e.R);
+  return o;
+}
+template <class I>
+struct FrameT {
+  I M[3][3], o[3];
+};
+template <class I>
+FrameT<I> convert(const Frame& f) {
+  FrameT<I> o;
+  for (int i = 0; i < 3; ++i) {
+    o.o[i] = to<I>(f.o[i]);
+    for (int j = 0; j < 3; ++j) o.M[i][j] = to<I>(f.M[i][j]);
+  }
+  return o;
+}
+
+// As solid_exact_detail::bernstein_eval, elem_point(_deriv), rotation_cs.
+template <class I>
+I bern(const std::vector<I>& c, const I& u) {
+  I b[16];
+  const std::size_t n = c.size();
+  if (n > 16) return I(0.0) * iv<I>(-kInf, kInf);  // unreachable for profile degrees; stays a valid "anything"
+  for (std::size_t j = 0; j < n; ++j) b[j] = c[j];
+  for (std::size_t r = 1; r < n; ++r)
+    for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + u * (b[j + 1] - b[j]);
+  return b[0];
+}
+template <class I>
+void point_of(const ElemT<I>& e, const I& u, I& r, I& z) {
+  const I w = bern(e.w, u);
+  r = bern(e.x, u) / w;
+  z = bern(e.y, u) / w;
+}
+template <class I>
+void point_deriv(const ElemT<I>& e, const I& u, I& r, I& z, I& dr, I& dz) {
+  const I w = bern(e.w, u), x = bern(e.x, u), y = bern(e.y, u);
+  const I dw = bern(e.dw, u), dx = bern(e.dx, u), dy = bern(e.dy, u);
+  r = x / w;
+  z = y / w;
+  const I w2 = sqr(w);
+  dr = (dx * w - x * dw) / w2;
+  dz = (dy * w - y * dw) / w2;
+}
+template <class I>
+void rot_cs(double s0, double s1, I& c, I& sn, I* dpsi_ds) {
+  const bool second = s0 >= 1.0;
+  const double k = second ? 1.0 : 0.0;
+  const I t = I(2.0) * (iv<I>(s0, s1) - I(k)) - I(1.0);
+  const I two_q = I(2.0) / (I(1.0) + sqr(t));
+  c = two_q - I(1.0);
+  sn = two_q * t;
+  if (second) {
+    c = -c;
+    sn = -sn;
+  }
+  if (dpsi_ds) *dpsi_ds = I(2.0) * two_q;
+}
 
 // One pair of elements with its roles: the surface of element s_elem of solid
 // s_side (0 = a, 1 = b) measured against element e_elem of the other solid.
@@ -115,12 +228,232 @@ struct Eval {
   int split = -1;                     // dimension to halve, -1 when none can be
 };
 
+// Proven bounds of the squared distance over a box of a job (S's surface patch
+// against E's element, E's frame f): see the file comment for the method.
+template <class I>
+Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<I>& f) {
+  double c[3], h[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = 0.5 * (b.lo[i] + b.hi[i]);
+    h[i] = std::max(c[i] - b.lo[i], b.hi[i] - c[i]);  // the centre is rounded; h covers both sides
+  }
+  // Over the box: S's point, its derivatives in u and s, seen in E's frame.
+  const I U = iv<I>(b.lo[0], b.hi[0]);
+  I r, z, dr, dz;
+  point_deriv(S, U, r, z, dr, dz);
+  I cs, sn, dpsi;
+  rot_cs(b.lo[1], b.hi[1], cs, sn, &dpsi);
+  I y[3], yu[3], ys[3];
+  for (int k = 0; k < 3; ++k) {
+    const I ec = cs * f.M[k][0] + sn * f.M[k][1];
+    const I es = cs * f.M[k][1] - sn * f.M[k][0];
+    y[k] = f.o[k] + r * ec + z * f.M[k][2];
+    yu[k] = dr * ec + dz * f.M[k][2];
+    ys[k] = dpsi * r * es;
+  }
+  const I rho = sqrt_nonneg(sqr(y[0]) + sqr(y[1])), zeta = y[2];
+  I drho[2], dzeta[2] = {yu[2], ys[2]};
+  const I* yd[2] = {yu, ys};
+  for (int i = 0; i < 2; ++i) {
+    if (rho.pos()) {
+      drho[i] = (y[0] * yd[i][0] + y[1] * yd[i][1]) / rho;
+    } else {
+      const double L = sqrt_nonneg(sqr(yd[i][0]) + sqr(yd[i][1])).hi();
+      drho[i] = iv<I>(-L, L);
+    }
+  }
+  // At the centre.
+  I rho_c, zeta_c;
+  {
+    I rc, zc, cc, sc;
+    point_of(S, I(c[0]), rc, zc);
+    rot_cs(c[1], c[1], cc, sc, static_cast<I*>(nullptr));
+    I yc[3];
+    for (int k = 0; k < 3; ++k) yc[k] = f.o[k] + rc * (cc * f.M[k][0] + sc * f.M[k][1]) + zc * f.M[k][2];
+    rho_c = sqrt_nonneg(sqr(yc[0]) + sqr(yc[1]));
+    zeta_c = yc[2];
+  }
+  const I H[3] = {sym<I>(h[0]), sym<I>(h[1]), sym<I>(h[2])};
+
+  Eval ev;
+  // Per dimension, how much the box's extent there lowers the bound of the squared
+  // distance below its centre value: the dimension to halve is the one that costs most.
+  double cost[3] = {0.0, 0.0, 0.0};
+  // A term T (in distance units) of a quantity Q whose square enters the squared
+  // distance lowers it by about 2 |Q(centre)| T + T^2; a term of a squared quantity by T.
+  auto add_cost = [&](int i, double T, double q_mag) { cost[i] += q_mag < 0 ? T : T * (2.0 * q_mag + T); };
+  // The mean-value form of Q given its derivatives with respect to rho and zeta.
+  // `weight` converts Q's units to distance; q_mag = |Q(centre)| in distance units,
+  // or < 0 when Q is itself a squared distance.
+  auto centred = [&](const I& q_c, const I& q_rho, const I& q_zeta, double weight, double q_mag) {
+    I out = q_c;
+    for (int i = 0; i < 2; ++i) {
+      const I g = q_rho * drho[i] + q_zeta * dzeta[i];
+      out = out + g * H[i];
+      add_cost(i, weight * abs(g).hi() * h[i], q_mag);
+    }
+    return out;
+  };
+  auto pick_split = [&]() {
+    double best = -1.0;
+    for (int i = 0; i < 3; ++i) {
+      if (!(b.lo[i] < c[i] && c[i] < b.hi[i])) continue;  // cannot be halved (or frozen)
+      // A NaN cost (0 x inf: an enclosure went unbounded, e.g. a rational weight's
+      // range reaching 0 over a wide box) means "unknown, large": halve there.
+      const double ci = std::isnan(cost[i]) ? kInf : cost[i];
+      if (ci > best) {
+        best = ci;
+        ev.split = i;
+      }
+    }
+  };
+
+  // |P - p|^2 for a point p of the target: over the box (mean-value form) or at the centre.
+  auto end_sq = [&](const I& px, const I& py, bool box) {
+    const I dr_c = rho_c - px, dz_c = zeta_c - py;
+    const I g_c = sqr(dr_c) + sqr(dz_c);
+    if (!box) return g_c;
+    const I dr_b = rho - px, dz_b = zeta - py;
+    return meet(centred(g_c, I(2.0) * dr_b, I(2.0) * dz_b, 1.0, -1.0), sqr(dr_b) + sqr(dz_b));
+  };
+  // Where the nearest target point is certainly one end, the squared distance is
+  // one smooth function and its own mean-value form is tight; a sum of separately
+  // bounded terms would not be (their gradients cancel at the minimum).
+  if (E.kind == ElemKind::line) {
+    const I ex = E.bx - E.ax, ey = E.by - E.ay;
+    const I e2 = ex * ex + ey * ey;
+    const I cr_c = ex * (zeta_c - E.ay) - ey * (rho_c - E.ax);
+    const I t_c = ((rho_c - E.ax) * ex + (zeta_c - E.ay) * ey) / e2;
+    const I t_nat = ((rho - E.ax) * ex + (zeta - E.ay) * ey) / e2;
+    const double exc_hi = std::max({0.0, -t_c.lo(), (t_c - I(1.0)).hi()});
+    if (t_nat.neg() || (t_nat - I(1.0)).pos()) {  // the foot is off the segment: nearest point is an end
+      ev.lower = t_nat.neg() ? std::max(0.0, end_sq(E.ax, E.ay, true).lo())
+                             : std::max(0.0, end_sq(E.bx, E.by, true).lo());
+    } else {
+      const double elen = sqrt_nonneg(e2).lo();
+      const I cr = meet(centred(cr_c, -ey, ex, 1.0 / elen, abs(cr_c).hi() / elen),
+                        ex * (zeta - E.ay) - ey * (rho - E.ax));
+      // The tangential part lowers the bound only where the centre's foot is off the segment.
+      const I t = meet(centred(t_c, ex / e2, ey / e2, exc_hi > 0 ? elen : 0.0, exc_hi * elen), t_nat);
+      const double exc_lo = std::max({0.0, -t.hi(), (t - I(1.0)).lo()});
+      ev.lower = (I(sq_lo<I>(mig(cr))) / e2 + e2 * I(sq_lo<I>(exc_lo))).lo();
+    }
+    ev.upper = (sqr(cr_c) / e2 + e2 * sqr(I(exc_hi))).hi();
+    pick_split();
+  } else if (E.kind == ElemKind::arc) {
+    const I pr = rho - E.cx, pz = zeta - E.cy;
+    const I pr_c = rho_c - E.cx, pz_c = zeta_c - E.cy;
+    const I q_c = sqrt_nonneg(sqr(pr_c) + sqr(pz_c));
+    // The closed sector: cross(q0 - c, P - c) >= 0 and cross(P - c, q1 - c) >= 0.
+    const I a0x = E.ax - E.cx, a0y = E.ay - E.cy, b0x = E.bx - E.cx, b0y = E.by - E.cy;
+    const I w0 = a0x * pz - a0y * pr, w1 = pr * b0y - pz * b0x;
+    const I w0_c = a0x * pz_c - a0y * pr_c, w1_c = pr_c * b0y - pz_c * b0x;
+    if (w0.neg() || w1.neg()) {  // outside the sector: the nearest arc point is an end
+      const I ga = end_sq(E.ax, E.ay, true), gb = end_sq(E.bx, E.by, true);
+      ev.lower = std::max(0.0, std::min(ga.lo(), gb.lo()));
+    } else {  // the whole circle is nearer than the arc
+      const I q_nat = sqrt_nonneg(sqr(pr) + sqr(pz));
+      I q;
+      if (q_nat.pos()) {
+        q = meet(centred(q_c, pr / q_nat, pz / q_nat, 1.0, abs(q_c - E.R).hi()), q_nat);
+      } else {  // the box may reach the centre: |P - c| is 1-Lipschitz in P
+        q = q_nat;
+        for (int i = 0; i < 2; ++i)
+          add_cost(i, sqrt_nonneg(sqr(drho[i]) + sqr(dzeta[i])).hi() * h[i], abs(q_c - E.R).hi());
+      }
+      ev.lower = sq_lo<I>(mig(q - E.R));
+    }
+    double up = std::min(end_sq(E.ax, E.ay, false).hi(), end_sq(E.bx, E.by, false).hi());
+    if (w0_c.nonneg() && w1_c.nonneg()) up = std::min(up, sqr(q_c - E.R).hi());
+    ev.upper = up;
+    pick_split();
+  } else {
+    const I V = iv<I>(b.lo[2], b.hi[2]);
+    I re, ze, dre, dze, rec, zec;
+    point_deriv(E, V, re, ze, dre, dze);
+    point_of(E, I(c[2]), rec, zec);
+    const I dR = rho - re, dZ = zeta - ze;
+    const I g_c = sqr(rho_c - rec) + sqr(zeta_c - zec);
+    const I two(2.0);
+    const I gv = two * (dR * dre + dZ * dze);
+    cost[2] = abs(gv).hi() * h[2];
+    const I g = meet(centred(g_c, two * dR, two * dZ, 1.0, -1.0) - gv * H[2], sqr(dR) + sqr(dZ));
+    ev.lower = std::max(0.0, g.lo());
+    ev.upper = g_c.hi();
+    pick_split();
+  }
+  return ev;
+}
+
+// solid_exact_detail::point_in_solid on doubles: the same crossing count of the
+// ray {(r, zeta) : r > rho} with each exact curve (Bernstein signs, halving until
+// decided), -1 / unknown where outward-rounded doubles cannot decide.
+int crossings_di(const std::vector<Di>& x, const std::vector<Di>& y, const std::vector<Di>& w, const Di& rho,
+                 const Di& zeta, int depth) {
+  const std::size_t n = w.size();
+  if (n > 16) return -1;
+  Di Z[16], Rr[16];
+  bool zpos = true, zneg = true, rneg = true, rpos = true;
+  for (std::size_t j = 0; j < n; ++j) {
+    Z[j] = y[j] - zeta * w[j];
+    Rr[j] = x[j] - rho * w[j];
+    zpos = zpos && Z[j].pos();
+    zneg = zneg && Z[j].neg();
+    rneg = rneg && Rr[j].neg();
+    rpos = rpos && Rr[j].pos();
+  }
+  if (zpos || zneg || rneg) return 0;
+  if (rpos) {
+    bool strict = true;
+    int variations = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!Z[j].pos() && !Z[j].neg()) strict = false;
+      if (j > 0 && Z[j].pos() != Z[j - 1].pos()) ++variations;
+    }
+    if (strict && variations == 1) return 1;
+  }
+  if (depth >= 30) return -1;
+  std::vector<Di> l[3], r[3];
+  const std::vector<Di>* c[3] = {&x, &y, &w};
+  for (int k = 0; k < 3; ++k) {  // de Casteljau at 1/2; halving is exact
+    std::vector<Di> b = *c[k];
+    l[k].resize(n);
+    r[k].resize(n);
+    for (std::size_t m = 0; m < n; ++m) {
+      l[k][m] = b[0];
+      r[k][n - 1 - m] = b[n - 1 - m];
+      for (std::size_t j = 0; j + 1 < n - m; ++j) b[j] = (b[j] + b[j + 1]) * Di(0.5);
+    }
+  }
+  const int a = crossings_di(l[0], l[1], l[2], rho, zeta, depth + 1);
+  if (a < 0) return -1;
+  const int bb = crossings_di(r[0], r[1], r[2], rho, zeta, depth + 1);
+  return bb < 0 ? -1 : a + bb;
+}
+Inside point_in_solid_di(const std::vector<ElemT<Di>>& elems, const Di& rho, const Di& zeta) {
+  int total = 0;
+  for (const ElemT<Di>& e : elems) {
+    const int n = crossings_di(e.x, e.y, e.w, rho, zeta, 0);
+    if (n < 0) return Inside::unknown;
+    total += n;
+  }
+  return total % 2 == 1 ? Inside::inside : Inside::outside;
+}
+
 class Solver {
  public:
   Solver(const std::vector<Element>* elems, const Pose* poses, bool coaxial)
       : elems_(elems), poses_(poses), coaxial_(coaxial) {
     frames_[0] = relative_frame(poses[0], poses[1]);
     frames_[1] = relative_frame(poses[1], poses[0]);
+    for (int side = 0; side < 2; ++side) {
+      iframes_[side] = convert<Ia>(frames_[side]);
+      dframes_[side] = convert<Di>(frames_[side]);
+      for (const Element& e : elems_[side]) {
+        ielem_[side].push_back(convert<Ia>(e));
+        delem_[side].push_back(convert<Di>(e));
+      }
+    }
   }
 
   std::vector<Job> jobs;
@@ -147,151 +480,20 @@ class Solver {
     zeta = y[2];
   }
 
+  // The bounds of a box: on doubles first; on 128-bit MPFI where the double
+  // bound may be too loose to matter (squared distances near 0, where rounding
+  // of ~1e-16 scale^2 becomes ~1e-8 scale after the square root).
   Eval evaluate(const Box& b) const {
     const Job& job = jobs[b.job];
-    const Element& S = elems_[job.s_side][job.s_elem];
-    const Element& E = elems_[1 - job.s_side][job.e_elem];
-    const Frame& f = frames_[job.s_side];
-    double c[3], h[3];
-    for (int i = 0; i < 3; ++i) {
-      c[i] = 0.5 * (b.lo[i] + b.hi[i]);
-      h[i] = std::max(c[i] - b.lo[i], b.hi[i] - c[i]);  // the centre is rounded; h covers both sides
-    }
-    // Over the box: S's point, its derivatives in u and s, seen in E's frame.
-    const Ia U = iv(b.lo[0], b.hi[0]);
-    Ia r, z, dr, dz;
-    elem_point_deriv(S, U, r, z, dr, dz);
-    Ia cs, sn, dpsi;
-    rotation_cs(b.lo[1], b.hi[1], cs, sn, &dpsi);
-    Ia y[3], yu[3], ys[3];
-    for (int k = 0; k < 3; ++k) {
-      const Ia ec = cs * f.M[k][0] + sn * f.M[k][1];
-      const Ia es = cs * f.M[k][1] - sn * f.M[k][0];
-      y[k] = f.o[k] + r * ec + z * f.M[k][2];
-      yu[k] = dr * ec + dz * f.M[k][2];
-      ys[k] = dpsi * r * es;
-    }
-    const Ia rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1])), zeta = y[2];
-    Ia drho[2], dzeta[2] = {yu[2], ys[2]};
-    const Ia* yd[2] = {yu, ys};
-    for (int i = 0; i < 2; ++i) {
-      if (rho.pos()) {
-        drho[i] = (y[0] * yd[i][0] + y[1] * yd[i][1]) / rho;
-      } else {
-        const double L = fit_audit_detail::sqrt_nonneg(sqr(yd[i][0]) + sqr(yd[i][1])).hi();
-        drho[i] = iv(-L, L);
-      }
-    }
-    // At the centre.
-    Ia rho_c, zeta_c, yc[3];
-    meridian(job, Ia(c[0]), c[1], rho_c, zeta_c, yc);
-    const Ia H[3] = {sym(h[0]), sym(h[1]), sym(h[2])};
-
-    Eval ev;
-    // Per dimension, how much the box's extent there lowers the bound of the squared
-    // distance below its centre value: the dimension to halve is the one that costs most.
-    double cost[3] = {0.0, 0.0, 0.0};
-    // A term T (in distance units) of a quantity Q whose square enters the squared
-    // distance lowers it by about 2 |Q(centre)| T + T^2; a term of a squared quantity by T.
-    auto add_cost = [&](int i, double T, double q_mag) { cost[i] += q_mag < 0 ? T : T * (2.0 * q_mag + T); };
-    // The mean-value form of Q given its derivatives with respect to rho and zeta.
-    // `weight` converts Q's units to distance; q_mag = |Q(centre)| in distance units,
-    // or < 0 when Q is itself a squared distance.
-    auto centred = [&](const Ia& q_c, const Ia& q_rho, const Ia& q_zeta, double weight, double q_mag) {
-      Ia out = q_c;
-      for (int i = 0; i < 2; ++i) {
-        const Ia g = q_rho * drho[i] + q_zeta * dzeta[i];
-        out = out + g * H[i];
-        add_cost(i, weight * abs(g).hi() * h[i], q_mag);
-      }
-      return out;
-    };
-    auto pick_split = [&]() {
-      double best = -1.0;
-      for (int i = 0; i < 3; ++i) {
-        if (!(b.lo[i] < c[i] && c[i] < b.hi[i])) continue;  // cannot be halved (or frozen)
-        if (cost[i] > best) {
-          best = cost[i];
-          ev.split = i;
-        }
-      }
-    };
-
-    // |P - p|^2 for a point p of the target: over the box (mean-value form) or at the centre.
-    auto end_sq = [&](const P2& p, bool box) {
-      const Ia dr_c = rho_c - p.x, dz_c = zeta_c - p.y;
-      const Ia g_c = sqr(dr_c) + sqr(dz_c);
-      if (!box) return g_c;
-      const Ia dr_b = rho - p.x, dz_b = zeta - p.y;
-      return meet(centred(g_c, Ia(2.0) * dr_b, Ia(2.0) * dz_b, 1.0, -1.0), sqr(dr_b) + sqr(dz_b));
-    };
-    // Where the nearest target point is certainly one end, the squared distance is
-    // one smooth function and its own mean-value form is tight; a sum of separately
-    // bounded terms would not be (their gradients cancel at the minimum).
-    if (E.kind == ElemKind::line) {
-      const P2 e = E.b - E.a;
-      const Ia e2 = fit_audit_detail::dot(e, e);
-      const Ia cr_c = e.x * (zeta_c - E.a.y) - e.y * (rho_c - E.a.x);
-      const Ia t_c = ((rho_c - E.a.x) * e.x + (zeta_c - E.a.y) * e.y) / e2;
-      const Ia t_nat = ((rho - E.a.x) * e.x + (zeta - E.a.y) * e.y) / e2;
-      const double exc_hi = std::max({0.0, -t_c.lo(), (t_c - Ia(1.0)).hi()});
-      if (t_nat.neg() || (t_nat - Ia(1.0)).pos()) {  // the foot is off the segment: nearest point is an end
-        ev.lower = std::max(0.0, end_sq(t_nat.neg() ? E.a : E.b, true).lo());
-      } else {
-        const double elen = fit_audit_detail::sqrt_nonneg(e2).lo();
-        const Ia cr = meet(centred(cr_c, -e.y, e.x, 1.0 / elen, abs(cr_c).hi() / elen),
-                           e.x * (zeta - E.a.y) - e.y * (rho - E.a.x));
-        // The tangential part lowers the bound only where the centre's foot is off the segment.
-        const Ia t = meet(centred(t_c, e.x / e2, e.y / e2, exc_hi > 0 ? elen : 0.0, exc_hi * elen), t_nat);
-        const double exc_lo = std::max({0.0, -t.hi(), (t - Ia(1.0)).lo()});
-        ev.lower = (Ia(sq_lo(mig(cr))) / e2 + e2 * Ia(sq_lo(exc_lo))).lo();
-      }
-      ev.upper = (sqr(cr_c) / e2 + e2 * sqr(Ia(exc_hi))).hi();
-      pick_split();
-    } else if (E.kind == ElemKind::arc) {
-      const Ia pr = rho - E.c.x, pz = zeta - E.c.y;
-      const Ia pr_c = rho_c - E.c.x, pz_c = zeta_c - E.c.y;
-      const Ia q_c = fit_audit_detail::sqrt_nonneg(sqr(pr_c) + sqr(pz_c));
-      // The closed sector: cross(q0 - c, P - c) >= 0 and cross(P - c, q1 - c) >= 0.
-      const P2 a0 = E.a - E.c, b0 = E.b - E.c;
-      const Ia w0 = a0.x * pz - a0.y * pr, w1 = pr * b0.y - pz * b0.x;
-      const Ia w0_c = a0.x * pz_c - a0.y * pr_c, w1_c = pr_c * b0.y - pz_c * b0.x;
-      if (w0.neg() || w1.neg()) {  // outside the sector: the nearest arc point is an end
-        const Ia ga = end_sq(E.a, true), gb = end_sq(E.b, true);
-        ev.lower = std::max(0.0, std::min(ga.lo(), gb.lo()));
-      } else {  // the whole circle is nearer than the arc
-        const Ia q_nat = fit_audit_detail::sqrt_nonneg(sqr(pr) + sqr(pz));
-        Ia q;
-        if (q_nat.pos()) {
-          q = meet(centred(q_c, pr / q_nat, pz / q_nat, 1.0, abs(q_c - E.R).hi()), q_nat);
-        } else {  // the box may reach the centre: |P - c| is 1-Lipschitz in P
-          q = q_nat;
-          for (int i = 0; i < 2; ++i)
-            add_cost(i, fit_audit_detail::sqrt_nonneg(sqr(drho[i]) + sqr(dzeta[i])).hi() * h[i], abs(q_c - E.R).hi());
-        }
-        ev.lower = sq_lo(mig(q - E.R));
-      }
-      double up = std::min(end_sq(E.a, false).hi(), end_sq(E.b, false).hi());
-      if (w0_c.nonneg() && w1_c.nonneg()) up = std::min(up, sqr(q_c - E.R).hi());
-      ev.upper = up;
-      pick_split();
-    } else {
-      const Ia V = iv(b.lo[2], b.hi[2]);
-      Ia re, ze, dre, dze, rec, zec;
-      elem_point_deriv(E, V, re, ze, dre, dze);
-      elem_point(E, Ia(c[2]), rec, zec);
-      const Ia dR = rho - re, dZ = zeta - ze;
-      const Ia g_c = sqr(rho_c - rec) + sqr(zeta_c - zec);
-      const Ia two(2.0);
-      const Ia gv = two * (dR * dre + dZ * dze);
-      cost[2] = abs(gv).hi() * h[2];
-      const Ia g = meet(centred(g_c, two * dR, two * dZ, 1.0, -1.0) - gv * H[2], sqr(dR) + sqr(dZ));
-      ev.lower = std::max(0.0, g.lo());
-      ev.upper = g_c.hi();
-      pick_split();
-    }
-    return ev;
+    const Eval ev = bound_box<Di>(b, delem_[job.s_side][job.s_elem], delem_[1 - job.s_side][job.e_elem],
+                                  dframes_[job.s_side]);
+    if (ev.lower > mpfi_below_) return ev;
+    ++mpfi_boxes;
+    return bound_box<Ia>(b, ielem_[job.s_side][job.s_elem], ielem_[1 - job.s_side][job.e_elem],
+                         iframes_[job.s_side]);
   }
+  void set_mpfi_below(double squared_distance) { mpfi_below_ = squared_distance; }
+  mutable long mpfi_boxes = 0;
 
   // World points of the pair realising the centre value of a box: [0] on S, [1] on E.
   void witness(const Box& b, Vec3 out[2]) const {
@@ -330,11 +532,24 @@ class Solver {
   }
 
   // Is S's surface point at (u, s) of this job strictly inside the other solid?
+  // On doubles first (the screen tests hundreds of points); MPFI decides what
+  // the doubles leave open.
   Inside test_point(int side, int elem, double u, double s, Vec3* world) const {
-    Ia y[3];
-    surface_point(elems_[side][elem], frames_[side], Ia(u), s, y);
-    const Ia rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1]));
-    const Inside in = point_in_solid(elems_[1 - side], rho, y[2]);
+    Inside in;
+    {
+      Di r, z, c, sn, y[3];
+      point_of(delem_[side][elem], Di(u), r, z);
+      rot_cs(s, s, c, sn, static_cast<Di*>(nullptr));
+      const FrameT<Di>& f = dframes_[side];
+      for (int k = 0; k < 3; ++k) y[k] = f.o[k] + r * (c * f.M[k][0] + sn * f.M[k][1]) + z * f.M[k][2];
+      in = point_in_solid_di(delem_[1 - side], sqrt_nonneg(sqr(y[0]) + sqr(y[1])), y[2]);
+    }
+    if (in == Inside::unknown) {
+      Ia y[3];
+      surface_point(elems_[side][elem], frames_[side], Ia(u), s, y);
+      const Ia rho = fit_audit_detail::sqrt_nonneg(sqr(y[0]) + sqr(y[1]));
+      in = point_in_solid(elems_[1 - side], rho, y[2]);
+    }
     if (world) {
       Ia r, z;
       elem_point(elems_[side][elem], Ia(u), r, z);
@@ -346,6 +561,192 @@ class Solver {
 
   bool coaxial() const { return coaxial_; }
 
+  // Tube against tube (paper section 3: a torus is the offset of its major
+  // circle). An arc element, or a curve certified to lie within [R_lo, R_hi] of
+  // a centre, sweeps a surface inside the solid tube of radius R_hi around the
+  // circle its centre sweeps; the distance between two solid tubes is
+  // max(0, d(C_S, C_E) - R_S - R_E) (Minkowski sums), so
+  //   dist(patch_S, patch_E) >= d(C_S, C_E) - R_S,hi - R_E,hi,
+  // with d(C_S, C_E) the certified circle distance (exact/circle_distance_exact).
+  // When the closest circle pair's direction lies in both elements' sectors the
+  // surface points along it are a genuine pair at that distance (up to R_hi -
+  // R_lo): the job is settled without a search, continua of closest pairs
+  // included (coaxial, interlocked rings, a sphere around a point).
+  // The circles are rounded to doubles for the circle engine; each point of the
+  // rounded circle is within delta of the true one, which the bound subtracts.
+  struct Tube {
+    bool ok = false;
+    double lower = 0.0;   // proven lower bound of the job's distance, rounded down
+    double upper_sq = kInf;  // squared distance of a genuine pair, rounded up
+    Box box;              // the degenerate box of that pair (witness)
+  };
+  Tube tube_bound(int j, double tol) const {
+    Tube t;
+    const Job& job = jobs[j];
+    const int sides[2] = {job.s_side, 1 - job.s_side};
+    const int ids[2] = {job.s_elem, job.e_elem};
+    double cr[2], cz[2], R_hi[2], R_lo[2], c_err[2];
+    for (int k = 0; k < 2; ++k) {
+      auto& memo = circ_memo_[sides[k]];
+      if (memo.empty()) memo.resize(elems_[sides[k]].size());
+      CircInfo& ci = memo[ids[k]];
+      if (ci.state == 0)
+        ci.state = circular(elems_[sides[k]][ids[k]], tol, ci.cr, ci.cz, ci.R_lo, ci.R_hi, ci.c_err) ? 1 : 2;
+      if (ci.state != 1) return t;
+      cr[k] = ci.cr, cz[k] = ci.cz, R_lo[k] = ci.R_lo, R_hi[k] = ci.R_hi, c_err[k] = ci.c_err;
+    }
+    // In E's frame (E = sides[1]): C_E = ((0, 0, cz_E), e3, cr_E); C_S through the relative frame.
+    const Frame& f = frames_[job.s_side];
+    Circle3 circ[2];
+    double delta[2] = {c_err[0], c_err[1]};
+    circ[1].center = Vec3(0, 0, cz[1]);
+    circ[1].normal = Vec3::UnitZ();
+    circ[1].radius = cr[1];
+    circ[0].radius = cr[0];
+    double eta = 0.0, cw = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const Ia ci = f.o[i] + f.M[i][2] * Ia(cz[0]);
+      circ[0].center[i] = 0.5 * (ci.lo() + ci.hi());
+      circ[0].normal[i] = 0.5 * (f.M[i][2].lo() + f.M[i][2].hi());
+      cw += sqr(Ia(ci.width())).hi();
+      eta += sqr(Ia(f.M[i][2].width())).hi();
+    }
+    // |c - c~| <= |widths|; a unit normal off by eta turns the circle by an angle
+    // <= 2 eta (eta << 1), moving its points by <= r * 2 eta.
+    eta = std::sqrt(eta) * 1.0001;
+    if (!(eta < 1e-3)) return t;
+    delta[0] = (Ia(delta[0]) + Ia(std::sqrt(cw) * 1.0001) + Ia(cr[0]) * Ia(2.0 * eta)).hi();
+    // Elements of one torus share its circle: certify each circle pair once.
+    const std::array<double, 5> key = {cr[0], cz[0], cr[1], cz[1], static_cast<double>(job.s_side)};
+    const ExactCircleResult* hit = nullptr;
+    for (const auto& [k, r] : circle_cache_)
+      if (k == key) hit = &r;
+    if (!hit) {
+      circle_cache_.emplace_back(key, circle3_circle3_distance_exact(circ[0], circ[1]));
+      hit = &circle_cache_.back().second;
+    }
+    const ExactCircleResult cd = *hit;
+    if (cd.status == ExactStatus::not_certified) return t;
+    const double lb = (Ia(cd.lower) - Ia(delta[0]) - Ia(delta[1]) - Ia(R_hi[0]) - Ia(R_hi[1])).lo();
+    if (!(lb > 0)) return t;  // the tubes may meet: nothing gained over the search
+    t.ok = true;
+    t.lower = lb;
+    // A genuine pair along the circles' closest pair, found in doubles and then
+    // bounded like any box (so it is a proof whatever the doubles did).
+    const Vec3 pa = cd.point_a, pb = cd.point_b, d = (pb - pa).normalized();
+    const Vec3 target_s = pa + d * 0.5 * (R_lo[0] + R_hi[0]);
+    const Vec3 target_e = pb - d * 0.5 * (R_lo[1] + R_hi[1]);
+    // Target points in each solid's own frame: S's through the inverse frame.
+    Vec3 xs;
+    for (int i = 0; i < 3; ++i) {
+      double acc = 0.0;
+      for (int k = 0; k < 3; ++k) acc += mid(f.M[k][i]) * (target_s[k] - mid(f.o[k]));
+      xs[i] = acc;
+    }
+    Box b;
+    b.job = j;
+    b.lo[0] = b.hi[0] = project(delem_[sides[0]][ids[0]], Vec2(std::hypot(xs.x(), xs.y()), xs.z()));
+    b.lo[1] = b.hi[1] = s_of(std::atan2(xs.y(), xs.x()));
+    b.lo[2] = b.hi[2] =
+        job.three_d ? project(delem_[sides[1]][ids[1]], Vec2(std::hypot(target_e.x(), target_e.y()), target_e.z())) : 0.0;
+    const Eval ev = bound_box<Ia>(b, ielem_[sides[0]][ids[0]], ielem_[sides[1]][ids[1]], iframes_[job.s_side]);
+    t.upper_sq = ev.upper;
+    t.box = b;
+    return t;
+  }
+
+ private:
+  // Is the element's curve within [R_lo, R_hi] of a centre (cr, cz), proven? Arcs
+  // are; a curve is when the Bernstein coefficients of (|C - c|^2 - R^2) w^2
+  // over those of w^2 say so within tol / 64 (rational quadratic circles whose
+  // weights were rounded, for instance). c_err: how far the true centre may be
+  // from (cr, cz) (arcs: the rational circumcentre's enclosure).
+  bool circular(const Element& e, double tol, double& cr, double& cz, double& R_lo, double& R_hi,
+                double& c_err) const {
+    if (e.kind == ElemKind::line) return false;
+    if (e.kind == ElemKind::arc) {
+      cr = mid(e.c.x);
+      cz = mid(e.c.y);
+      c_err = std::hypot(e.c.x.width(), e.c.y.width()) * 1.0001;
+      R_lo = e.R.lo() - c_err;
+      R_hi = e.R.hi() + c_err;
+      return cr >= 0 && R_lo > 0;
+    }
+    // A circle through the curve's ends and middle, in doubles (any centre is
+    // sound: the annulus below is what is proven).
+    Ia r0, z0, r1, z1, rm, zm;
+    elem_point(e, Ia(0.0), r0, z0);
+    elem_point(e, Ia(1.0), r1, z1);
+    elem_point(e, Ia(0.5), rm, zm);
+    const Vec2 p0(mid(r0), mid(z0)), p1(mid(r1), mid(z1)), pm(mid(rm), mid(zm));
+    const Vec2 a = pm - p0, b = p1 - p0;
+    const double den = 2.0 * (a.x() * b.y() - a.y() * b.x());
+    if (!(std::abs(den) > 1e-12 * (a.squaredNorm() + b.squaredNorm()))) return false;
+    const Vec2 c = p0 + Vec2(b.y() * a.squaredNorm() - a.y() * b.squaredNorm(),
+                             a.x() * b.squaredNorm() - b.x() * a.squaredNorm()) / den;
+    if (!(c.x() >= 0)) return false;
+    const double R = (p0 - c).norm();
+    using fit_audit_detail::bernstein_product;
+    const std::size_t n = e.seg.w.size();
+    Poly qx(n), qy(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      qx[i] = e.seg.x[i] - Ia(c.x()) * e.seg.w[i];
+      qy[i] = e.seg.y[i] - Ia(c.y()) * e.seg.w[i];
+    }
+    const Poly xx = bernstein_product(qx, qx), yy = bernstein_product(qy, qy), ww = bernstein_product(e.seg.w, e.seg.w);
+    double m = kInf, M = -kInf;
+    for (std::size_t i = 0; i < ww.size(); ++i) {
+      if (!ww[i].pos()) return false;
+      const Ia q = (xx[i] + yy[i]) / ww[i] - sqr(Ia(R));
+      m = std::min(m, q.lo());
+      M = std::max(M, q.hi());
+    }
+    const Ia lo2 = sqr(Ia(R)) + Ia(m), hi2 = sqr(Ia(R)) + Ia(M);
+    if (!lo2.pos()) return false;
+    R_lo = fit_audit_detail::sqrt_nonneg(lo2).lo();
+    R_hi = fit_audit_detail::sqrt_nonneg(hi2).hi();
+    if (!(R_hi - R_lo <= tol / 64)) return false;
+    cr = c.x();
+    cz = c.y();
+    c_err = 0.0;
+    return true;
+  }
+  // The parameter of the element's point nearest to q, in doubles (sampling,
+  // then golden-section search): only a guess; its use is bounded exactly.
+  static double project(const ElemT<Di>& e, const Vec2& q) {
+    auto dist2 = [&](double u) {
+      Di r, z;
+      point_of(e, Di(u), r, z);
+      return sq2(0.5 * (r.lo() + r.hi()) - q.x()) + sq2(0.5 * (z.lo() + z.hi()) - q.y());
+    };
+    const int n = 64;
+    int best = 0;
+    double bd = kInf;
+    for (int i = 0; i <= n; ++i) {
+      const double v = dist2(static_cast<double>(i) / n);
+      if (v < bd) bd = v, best = i;
+    }
+    double lo = std::max(0.0, (best - 1.0) / n), hi = std::min(1.0, (best + 1.0) / n);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 80 && hi - lo > 1e-17; ++it) {
+      const double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      if (dist2(x1) < dist2(x2))
+        hi = x2;
+      else
+        lo = x1;
+    }
+    return 0.5 * (lo + hi);
+  }
+  static double sq2(double x) { return x * x; }
+  // Inverse of psi_of (the chart of solid_exact_internal.h).
+  static double s_of(double psi) {
+    if (std::abs(psi) <= 0.5 * M_PI) return std::clamp(0.5 * (std::tan(0.5 * psi) + 1.0), 0.0, 1.0);
+    const double p = psi > 0 ? psi - M_PI : psi + M_PI;
+    return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
+  }
+
+ public:
+
  private:
   static double mid(const Ia& x) { return 0.5 * (x.lo() + x.hi()); }
 
@@ -353,6 +754,17 @@ class Solver {
   const Pose* poses_;
   bool coaxial_;
   Frame frames_[2];
+  FrameT<Ia> iframes_[2];
+  FrameT<Di> dframes_[2];
+  std::vector<ElemT<Ia>> ielem_[2];
+  std::vector<ElemT<Di>> delem_[2];
+  double mpfi_below_ = 0.0;
+  mutable std::vector<std::pair<std::array<double, 5>, ExactCircleResult>> circle_cache_;
+  struct CircInfo {
+    int state = 0;  // 0 not yet asked, 1 circular, 2 not
+    double cr = 0, cz = 0, R_lo = 0, R_hi = 0, c_err = 0;
+  };
+  mutable std::vector<CircInfo> circ_memo_[2];
 };
 
 // Size of a profile for the width target: the extent of its control points.
@@ -367,6 +779,13 @@ double profile_size(const Profile& p) {
   return std::max(2.0 * rmax, zhi - zlo);
 }
 
+// Per-thread CPU time: the machine is shared, wall clock would time the neighbours.
+double thread_cpu_ms() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
 double round_down_sqrt(double x) { return x > 0 ? std::nextafter(std::sqrt(x), 0.0) : 0.0; }
 double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
 
@@ -374,11 +793,14 @@ double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
 
 ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, const Profile& b, const Pose& pose_b,
                                       const ExactSolidOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = thread_cpu_ms();
+  const auto wall0 = std::chrono::steady_clock::now();  // progress is paced in wall time, as users see it
   ExactSolidResult res;
   res.upper = kInf;
+  const Solver* solver_ptr = nullptr;
   auto finish = [&]() {
-    res.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    res.time_ms = thread_cpu_ms() - t0;
+    if (solver_ptr) res.mpfi_boxes = solver_ptr->mpfi_boxes;
     return res;
   };
   std::string why;
@@ -397,7 +819,12 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.scale = std::max({profile_size(a), profile_size(b), (pose_a.translation - pose_b.translation).norm()});
   const double tol = options.absolute_width > 0 ? options.absolute_width : options.relative_width * res.scale;
   Solver solver(elems, poses, exactly_coaxial(pose_a, pose_b));
+  solver_ptr = &solver;
   solver.make_jobs();
+  // Below this distance a double bound's rounding (~1e-13 scale^2 in a squared
+  // distance, ~1e-13 scale^2 / d after the square root) could exceed tol / 10.
+  const double d_mpfi = 1e-12 * res.scale * res.scale / tol;
+  solver.set_mpfi_below(options.double_bounds ? d_mpfi * d_mpfi : kInf);
 
   auto report_overlap = [&](const Vec3& p) {
     res.certified = true;
@@ -425,10 +852,11 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   double stuck_min = kInf;
   double ub = kInf;
   Box best;
+  std::vector<double> floor_sq;  // proven lower bound of each job (tube pairs), squared
   auto consider = [&](Box bx) {
     const Eval ev = solver.evaluate(bx);
     ++res.boxes;
-    bx.lower = ev.lower;
+    bx.lower = std::max(ev.lower, floor_sq[bx.job]);
     bx.split = ev.split;
     if (ev.upper < ub) {
       ub = ev.upper;
@@ -441,9 +869,33 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     } else
       queue.push(bx);
   };
+  // Tube pairs first: settled ones never enter the search, and their genuine
+  // pairs give the search an upper bound to prune with from the start.
+  floor_sq.assign(solver.jobs.size(), 0.0);
+  std::vector<char> settled(solver.jobs.size(), 0);
+  std::vector<double> tube_lower(solver.jobs.size(), -1.0);
+  for (std::size_t j = 0; j < solver.jobs.size() && options.use_structure; ++j) {
+    const Solver::Tube t = solver.tube_bound(static_cast<int>(j), tol);
+    if (!t.ok) continue;
+    tube_lower[j] = t.lower;
+    floor_sq[j] = sq_lo<Ia>(t.lower);
+    if (t.upper_sq < ub) {
+      ub = t.upper_sq;
+      best = t.box;
+    }
+  }
+  double settled_min = kInf;  // the least floor of the settled jobs, squared
+  for (std::size_t j = 0; j < solver.jobs.size(); ++j)
+    if (tube_lower[j] >= 0 && round_up_sqrt(ub) - tube_lower[j] <= 0.25 * tol) {
+      settled[j] = 1;  // no pair of this job is nearer than the bracket's lower end
+      settled_min = std::min(settled_min, floor_sq[j]);
+      ++res.closed_form_pairs;
+    }
+  res.element_pairs = static_cast<int>(solver.jobs.size());
+  res.searched_pairs = res.element_pairs - res.closed_form_pairs;
   const int n_s = solver.coaxial() ? 1 : 4;
   for (std::size_t j = 0; j < solver.jobs.size(); ++j)
-    for (int k = 0; k < n_s; ++k) {
+    for (int k = 0; k < n_s && !settled[j]; ++k) {
       Box bx;
       bx.job = static_cast<int>(j);
       bx.lo[0] = 0.0;
@@ -455,25 +907,41 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
       consider(bx);
     }
   auto min_lower = [&]() {
-    double m = std::min(ub, stuck_min);
+    double m = std::min({ub, stuck_min, settled_min});
     if (!queue.empty()) m = std::min(m, queue.top().lower);
     return m;
   };
   long pops = 0;
   bool budget_hit = false;
+  const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(options.progress_interval_s));
+  auto next_progress = wall0 + interval;
   while (!queue.empty()) {
     const Box top = queue.top();
     if (top.lower >= ub) {  // every remaining box is at least as far
       while (!queue.empty()) queue.pop();
       break;
     }
-    if (std::sqrt(ub) - std::sqrt(std::min(top.lower, stuck_min)) <= 0.5 * tol) break;
+    if (std::sqrt(ub) - std::sqrt(std::min({top.lower, stuck_min, settled_min})) <= 0.5 * tol) break;
     if (res.boxes >= options.max_boxes) {
       budget_hit = true;
       break;
     }
     queue.pop();
     ++pops;
+    if (options.progress && pops % 256 == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now >= next_progress) {
+        next_progress = now + interval;
+        ExactProgress pr;
+        pr.boxes = res.boxes;
+        pr.lower = round_down_sqrt(std::min({top.lower, stuck_min, settled_min}));
+        pr.upper = round_up_sqrt(ub);
+        pr.target_width = tol;
+        pr.seconds = std::chrono::duration<double>(now - wall0).count();
+        options.progress(pr);
+      }
+    }
     // Crossing surfaces keep the lower bound at 0 along a curve: look for a proof
     // of overlap near the best pair now and then.
     if (top.lower <= 0.0 && pops % 512 == 0) {

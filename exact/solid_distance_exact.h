@@ -4,6 +4,7 @@
 // method and why it is a proof are stated in exact/solid_distance_exact.cpp.
 // This header includes no CGAL/GMP/MPFR header on purpose (the CLI includes it).
 #pragma once
+#include <functional>
 #include <string>
 
 #include "core/pose.h"
@@ -12,12 +13,28 @@
 
 namespace revdist {
 
+// What a long query has done so far (ExactSolidOptions::progress).
+struct ExactProgress {
+  long boxes = 0;                      // parameter boxes evaluated
+  double lower = 0.0, upper = 0.0;     // the current proven bracket of the distance
+  double target_width = 0.0;           // the width the query stops at
+  double seconds = 0.0;                // wall time since the query started
+};
+
 struct ExactSolidOptions {
   // Target width of [lower, upper] relative to the scale of the query (the larger
   // of the two solids' sizes and the distance between their frame origins).
   double relative_width = 1e-9;
   double absolute_width = 0.0;  // > 0: the target width itself, instead of relative_width * scale
   long max_boxes = 2000000;     // work budget: parameter boxes evaluated
+  // Off only to test the paths against each other: tube pairs by the circle
+  // distance, and box bounds on outward-rounded doubles before MPFI.
+  bool use_structure = true;
+  bool double_bounds = true;
+  // Called from the query's thread at most once per progress_interval_s of wall
+  // time, never before the first interval has passed (short queries stay silent).
+  std::function<void(const ExactProgress&)> progress;
+  double progress_interval_s = 1.0;
 };
 
 struct ExactSolidResult {
@@ -31,8 +48,12 @@ struct ExactSolidResult {
   bool overlap = false;          // proven: a point lies strictly inside both solids (lower = upper = 0)
   Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  // world points on the two surfaces, |a - b| ~ upper
   double scale = 0.0;
-  long boxes = 0;                // parameter boxes evaluated
-  double time_ms = 0.0;
+  long boxes = 0;                // parameter boxes evaluated (on doubles, and again on MPFI near contact)
+  long mpfi_boxes = 0;           // boxes whose double bound was too loose near contact: re-bounded on MPFI
+  int element_pairs = 0;         // pairs (element of a, element of b): the leaves of the search
+  int closed_form_pairs = 0;     // pairs settled in closed form (tube against tube: circle distance)
+  int searched_pairs = 0;        // pairs that needed branch and bound
+  double time_ms = 0.0;          // per-thread CPU time of the query
 };
 
 // Distance between solid a (profile a, world = R(pose_a) local + t) and solid b.

@@ -3,6 +3,7 @@
 #include "fast/biarc_fit.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "core/curve_eval.h"
@@ -41,15 +42,18 @@ LensBound lens_bound(const SpanEnds& e) {
   lb.beta = std::atan2(cross(u, e.t1), u.dot(e.t1));
   lb.width = 0.5 * d * std::abs(half_tan(u, e.t0) + half_tan(u, e.t1));
   // 1e-9 rad: the angles come from tangents with ~1e-15 relative error; a real
-  // violation (a missed split) is far larger.
+  // violation (a missed split) is far larger. The chord adds its own rounding:
+  // p0 and p1 carry ~ulp of their coordinates, so its direction ~8 u |p| / d.
+  const double chord_tol =
+      8 * DBL_EPSILON * (e.p0.cwiseAbs().maxCoeff() + e.p1.cwiseAbs().maxCoeff()) / d;
   const double a = std::abs(lb.alpha), b = std::abs(lb.beta);
-  bool ok = a <= kHalfPi + 1e-9 && b <= kHalfPi + 1e-9;
+  bool ok = a <= kHalfPi + 1e-9 + chord_tol && b <= kHalfPi + 1e-9 + chord_tol;
   // Vogt's inequality: along a spiral, |angle to the chord| grows with |curvature|.
   if (std::isfinite(e.k0) && std::isfinite(e.k1)) {
     const double dk = std::abs(e.k1) - std::abs(e.k0);
     const double da = b - a;
     const double k_tol = 1e-7 * (std::abs(e.k0) + std::abs(e.k1));
-    const double a_tol = 1e-7 * (a + b) + 1e-12;
+    const double a_tol = 1e-7 * (a + b) + 1e-12 + 2 * chord_tol;
     if ((dk > k_tol && da < -a_tol) || (dk < -k_tol && da > a_tol)) ok = false;
   }
   lb.hypotheses_ok = ok;

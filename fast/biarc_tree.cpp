@@ -155,6 +155,23 @@ struct Builder {
   }
 
   void build_spiral(std::int32_t node, const SpiralSpan& s) {
+    if (s.kind == SpanKind::curve && !s.proven) {
+      // The split could not prove the spiral hypotheses here (its work bound
+      // ran out): the lens proves nothing, whatever the end data say.
+      BiarcFit f;
+      f.eps = std::numeric_limits<double>::infinity();
+      f.u0 = s.u0;
+      f.u1 = s.u1;
+      f.piece = s.piece;
+      f.arcs = 1;
+      f.arc[0] = Arc2{s.ends.p0, (s.ends.p1 - s.ends.p0).normalized(), 0.0, (s.ends.p1 - s.ends.p0).norm()};
+      f.arc[1] = Arc2{s.ends.p1, f.arc[0].tangent, 0.0, 0.0};
+      tree.nodes[node].fit = add_fit(f);
+      set_capsule(node, Capsule{s.ends.p0, s.ends.p1, std::numeric_limits<double>::infinity()});
+      ++st.unproven;
+      note_leaf(f);
+      return;
+    }
     if (s.kind == SpanKind::curve) {
       build_curve(node, profile.pieces[s.piece], s.piece, s.u0, s.u1, s.ends, 0);
     } else {

@@ -12,9 +12,26 @@
 // Q_A = o_A + λ a with (d . a)^2 = n_zA^2 |d|^2, d = Q_B - Q_A, Q_B = o_B + μ b,
 // and (d . b)^2 = n_zB^2 |d|^2. Two quadrics in (λ, μ); eliminating λ leaves a
 // quartic in μ (resultant of two quadratics).
+//
+// Output counts (the capacities in the header). poly_roots_in reports at most
+// n + 1 roots of a degree-n polynomial on an interval (n monotone pieces
+// between critical points, plus an exact zero at the right end), so
+// trig_poly_roots reports at most 2 (n + 1) angles over its two charts: 18
+// for degree 8, 10 for degree 4. circle_cone_critical: 18 when h varies on C;
+// when h is constant, 1 + 10 (extremes of ρ_K, degree 4) + 2 · 10 (ρ_K equal
+// to either end's radius, degree 4) = 31 <= kCircleConeCriticalMax.
+// cone_cone_normals: two conics in (λ, μ) share at most 4 points (Bezout) when
+// the system is not degenerate; each gives one line, whose feet are at most
+// 2 on either cone (both sides of the axis, for a cylinder), so at most 4
+// pairs: 16 in all. The code can report more only in near-degenerate systems
+// (the quartic's n + 1, a λ double root emitting both roots, lines through a
+// point where the axes meet: 4 directions of 4 pairs each, the grid of 36
+// Newton starts when the resultant vanishes); there it keeps
+// kConeConeNormalsMax pairs and reports the rest as a degenerate system.
 #include "fast/cone_normals.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -184,7 +201,7 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
     Fa = axpy(nr2, mul(k.Q1a, k.Q1a), 4 * nz2, mul(mul_abs(k.Zp, k.Zp), Qa));
   }
   auto point = [&](double t) { return k.point(t, C); };
-  double th[16];  // two root charts of a degree-8 polynomial
+  double th[18];  // two root charts of a degree-8 polynomial: 2 (8 + 1)
   int n = 0;
   if (max_abs(F) > 256 * kEps * max_abs(Fa)) {
     n = trig_poly_roots(F.c, F.n, th);
@@ -197,7 +214,7 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
   out[m++] = point(0.0);
   if (max_abs(Q1) > 256 * kEps * max_abs(k.Q1a)) {
     n = trig_poly_roots(Q1.c, 4, th);
-    for (int i = 0; i < n && m < 16; ++i) out[m++] = point(th[i]);
+    for (int i = 0; i < n; ++i) out[m++] = point(th[i]);
   }
   const Poly one2 = mul(one, one);
   for (const Vec2& q : {K.p0, K.p1}) {
@@ -205,7 +222,7 @@ int circle_cone_critical(const Circle3& C, const Patch& K, Vec3* out, bool* dege
     const Poly G = axpy(1, Q, -rr * rr, one2);
     if (max_abs(G) <= 256 * kEps * (max_abs(Qa) + rr * rr)) continue;
     n = trig_poly_roots(G.c, 4, th);
-    for (int i = 0; i < n && m < 16; ++i) out[m++] = point(th[i]);
+    for (int i = 0; i < n; ++i) out[m++] = point(th[i]);
   }
   return m;
 }
@@ -305,6 +322,24 @@ double polish_cone_cone(const Vec3& w, const Vec3& a, const Vec3& b, double nzA,
 
 }  // namespace
 
+namespace {
+
+std::atomic<std::uint64_t> g_cone_fallbacks{0};
+
+// The count, and the fallback when candidates did not fit: a degenerate
+// system, so the caller keeps the pair's bounds conservative.
+int finish(int k, bool overflow, bool* degenerate) {
+  if (overflow) {
+    *degenerate = true;
+    g_cone_fallbacks.fetch_add(1, std::memory_order_relaxed);
+  }
+  return k;
+}
+
+}  // namespace
+
+std::uint64_t cone_normals_fallbacks() { return g_cone_fallbacks.load(std::memory_order_relaxed); }
+
 int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, bool* degenerate) {
   *degenerate = false;
   const double nrA = A.n.x(), nzA = A.n.y(), nrB = B.n.x(), nzB = B.n.y();
@@ -336,16 +371,30 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
   const Poly Pa = axpy(std::abs(al2), mul_abs(b0, Poly{{1}, 0}), std::abs(be2), mul_abs(a0, Poly{{1}, 0}));
   const double mag = sum_abs(mul(Pa, Pa)) + sum_abs(mul_abs(S, T)) + 1e-300;
   int k = 0;
+  bool overflow = false;
+  // Pairs go through a buffer of 4 (pair_feet's most) so that none is written
+  // past the caller's capacity; what does not fit marks the system degenerate.
+  auto keep = [&](int n, const Vec3* xs, const Vec3* ys) {
+    for (int i = 0; i < n; ++i) {
+      if (k == kConeConeNormalsMax) {
+        overflow = true;
+        return;
+      }
+      x_out[k] = xs[i];
+      y_out[k] = ys[i];
+      ++k;
+    }
+  };
   // One common normal through Q_A = o_A + λ a and Q_B = o_B + μ b (scaled
   // units), polished on the unsquared conditions: its feet on both cones.
   auto emit = [&](double lam, double mu, bool polish) {
-    if (k > 12) return;
+    Vec3 xs[4], ys[4];
     if (polish) polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu);
     const Vec3 QA = A.o + (lam / sigma) * A.a;
     const Vec3 QB = B.o + (mu / sigma) * B.a;
     Vec3 d = QB - QA;
     if (d.norm() > 1e-12 / sigma) {
-      k += pair_feet(A, B, QA, QB, d, x_out + k, y_out + k);
+      keep(pair_feet(A, B, QA, QB, d, xs, ys), xs, ys);
       return;
     }
     // The axes meet here: lines through the meeting point at both normal angles.
@@ -359,8 +408,7 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
         const double rest = 1 - base.squaredNorm();
         if (rest < 0) continue;
         d = base + g * std::sqrt(rest / axb.squaredNorm()) * axb;
-        if (k + 4 > 16) return;
-        k += pair_feet(A, B, Qm, Qm, d, x_out + k, y_out + k);
+        keep(pair_feet(A, B, Qm, Qm, d, xs, ys), xs, ys);
         if (rest == 0) break;
       }
   };
@@ -369,7 +417,7 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
     // axes (closed form; the squared system has only quadruple roots).
     const double det = 1 - c * c;
     emit((wa - c * wb) / det, (c * wa - wb) / det, false);
-    return k;
+    return finish(k, overflow, degenerate);
   }
   const double margin = 1e-6;  // in scaled units: the range check on the feet decides
   const double lo = std::min(zb0, zb1) * sigma - margin, hi = std::max(zb0, zb1) * sigma + margin;
@@ -378,7 +426,7 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
     // pose): Newton on the unsquared conditions from a grid of starts over
     // both axes' ranges and both normal orientations; only converged roots.
     const double za0 = A.p0.y() - A.p0.x() * nzA / nrA, za1 = A.p1.y() - A.p1.x() * nzA / nrA;
-    double found[16][2];
+    double found[36][2];  // one per start at most
     int nf = 0;
     for (int i = 0; i <= 2; ++i)
       for (int j = 0; j <= 2; ++j)
@@ -388,15 +436,15 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
             if (polish_cone_cone(w, A.a, B.a, nzA, nzB, &lam, &mu, s1, s2) > 1e-12) continue;
             bool dup = false;
             for (int f = 0; f < nf; ++f) dup = dup || (std::abs(found[f][0] - lam) + std::abs(found[f][1] - mu) < 1e-9);
-            if (dup || nf == 16) continue;
+            if (dup) continue;
             found[nf][0] = lam;
             found[nf][1] = mu;
             ++nf;
             emit(lam, mu, false);
           }
-    return k;
+    return finish(k, overflow, degenerate);
   }
-  double mus[8];
+  double mus[8];  // poly_roots_in: at most n + 1 = 5
   const double tol = 64 * kEps * sum_abs(Res) * std::pow(std::max({1.0, std::abs(lo), std::abs(hi)}), 4);
   const int nm = poly_roots_in(Res.c, Res.n, lo, hi, tol, mus);
   for (int i = 0; i < nm; ++i) {
@@ -415,7 +463,7 @@ int cone_cone_normals(const Patch& A, const Patch& B, Vec3* x_out, Vec3* y_out, 
       emit((-e1b - sq) / (2 * e1a), mu, true);
     }
   }
-  return k;
+  return finish(k, overflow, degenerate);
 }
 
 int line_surface_intersections(const Vec3& p, const Vec3& d, double s_max, const Patch& P, Vec3* out) {
@@ -487,7 +535,7 @@ int circle_surface_intersections(const Circle3& C, const Patch& P, Vec3* out) {
     Ga = axpy(1, mul(Ha, Ha), 4 * cr * cr, mul(k.Qa, one2));
   }
   if (max_abs(G) <= 256 * kEps * max_abs(Ga)) return 0;  // C lies on the surface: no isolated points
-  double th[16];
+  double th[18];
   const int n = trig_poly_roots(G.c, G.n, th);
   for (int i = 0; i < n; ++i) out[i] = k.point(th[i], C);
   return n;

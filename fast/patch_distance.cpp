@@ -194,7 +194,7 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
     }
   }
   if (O.straight) {
-    Vec3 pts[16];
+    Vec3 pts[kCircleConeCriticalMax];
     bool deg = false;
     const int n = circle_cone_critical(E, O, pts, &deg);
     for (int i = 0; i < n; ++i) {
@@ -267,7 +267,7 @@ void interior_vs_interior(Collector& c, double disk_lb) {
   }
   if (c.skip(disk_lb)) return;
   if (A.straight && B.straight) {
-    Vec3 xs[16], ys[16];
+    Vec3 xs[kConeConeNormalsMax], ys[kConeConeNormalsMax];
     bool deg = false;
     int n = cone_cone_normals(A, B, xs, ys, &deg);
     if (deg) c.res.degenerate = true;
@@ -290,7 +290,7 @@ void interior_vs_interior(Collector& c, double disk_lb) {
   const bool a_is_torus = !A.straight;
   const Patch& T = a_is_torus ? A : B;
   const Patch& K = a_is_torus ? B : A;
-  Vec3 ms[16];
+  Vec3 ms[kCircleConeCriticalMax];
   bool deg = false;
   const int n = circle_cone_critical(patch_major_circle(T), K, ms, &deg);
   (void)deg;  // h constant on the major circle: the points returned represent it (see cone_normals.h)
@@ -325,7 +325,7 @@ void nonsmooth_points(Collector& c, bool on_a) {
   const double ext = patch_extent(P, &centre);
   // The axis line of O, from its point nearest to P's centre.
   const Vec3 p = O.o + (centre - O.o).dot(O.a) * O.a;
-  Vec3 pts[16];
+  Vec3 pts[kCircleConeCriticalMax];  // circle_surface_intersections: 18, line: 4
   auto add = [&](int n) {
     for (int i = 0; i < n; ++i)
       if (on_a ? c.on_a(pts[i]) : c.on_b(pts[i])) {

@@ -1,24 +1,23 @@
 // Spiral split of a profile (paper section 4.1).
 //
-// Root finder: dense sampling + sign changes + bisection. Every function we
-// split on (r', z', K, N) is available pointwise for any rational B-spline
-// through core/curve_eval, so one finder covers all piece types; and only
-// *sign changes* matter for the lens hypotheses (a root of even multiplicity
-// does not break monotonicity), which is exactly what sign sampling detects.
-// Bisection (not Newton) converges to either a root or a knot where the
-// function jumps, and never leaves its bracket. The known gap: two sign
-// changes inside one sample cell (8(p+1) cells per knot span) are missed; the
-// biarc fitter checks Vogt's inequality on every node as a cheap guard, and
-// exact/ audits the leaves. A Bernstein-form isolator (NOTES section 4) would
-// close the gap at the cost of symbolic products of the homogeneous form.
+// Root finder: the functions we split on (r', z', K, N, and the squared speed
+// for singular points) are polynomials on each Bezier segment of a piece
+// (their numerators, for rational pieces), computed in the Bernstein basis
+// with a bound on their rounding error; fast/bernstein.h isolates their sign
+// changes with proof (Descartes' rule on the control polygon, de Casteljau
+// halving, safeguarded Newton). Only sign changes matter for the lens
+// hypotheses (a root of even multiplicity does not break monotonicity). What
+// the proof leaves open is only parts narrower than 2^-44 of a segment, at
+// the split points themselves or where a function touches 0.
 #include "fast/spiral_split.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
 #include "core/curve_eval.h"
-#include "fast/biarc_fit.h"
+#include "fast/bernstein.h"
 
 namespace revdist {
 
@@ -28,140 +27,210 @@ constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Signs of r', z', K and N at u; 0 where the value is rounding noise relative to
-// the terms it is made of (10^-9: the terms carry ~16 digits, and a genuine
-// value that small only shifts a split point by a negligible amount).
-struct SignSample {
-  double u = 0.0;
-  signed char s[4] = {0, 0, 0, 0};
-  double speed = 0.0;
+// The functions whose signs the lens hypotheses need, on one rational Bezier
+// segment of a piece, as polynomials in the segment's parameter t in [0, 1]
+// (u = u0 + t (u1 - u0), so d/dt = (u1 - u0) d/du keeps every sign). With the
+// homogeneous form P = (X, Y, W) = (w r, w z, w), C = (X, Y) / W:
+//   C'          = A / W^2,  A = (X'W - XW', Y'W - YW')
+//   cross(C',C'') = D / W^3, D = det[P, P', P'']
+//   kappa       = D W^3 / |A|^3
+//   d kappa/dt  = W^2 N / |A|^5,  N = (D'W + 3DW') |A|^2 - 3DW (A.A')
+// so with W > 0 (weights are positive) r', z', the curvature and its
+// derivative have the signs of A_x, A_y, D and N, and |A|^2 = 0 marks a
+// singular point. For a polynomial segment (W = 1) these reduce to A = C',
+// D = cross(C', C''), N = D'|C'|^2 - 3D (C'.C''), of much lower degree.
+// Each term of a sum has the same nominal degree, so no degree elevation.
+struct SegmentFunctions {
+  BernsteinPoly f[4];  // A_x, A_y, D, N
+  BernsteinPoly speed2;
+  bool curved = false;  // degree >= 2: D and N exist (else both are 0)
 };
 
-signed char sign_of(double v, double scale, double rel) {
-  if (!(std::abs(v) > rel * scale)) return 0;
-  return v > 0 ? 1 : -1;
-}
-
-SignSample sample_signs(const Piece& piece, double u) {
-  Vec2 d[4];
-  piece_derivatives(piece, u, 3, d);
-  SignSample s;
-  s.u = u;
-  const double r1 = d[1].x(), z1 = d[1].y(), r2 = d[2].x(), z2 = d[2].y();
-  const double r3 = d[3].x(), z3 = d[3].y();
-  const double speed2 = r1 * r1 + z1 * z1;
-  s.speed = std::sqrt(speed2);
-  s.s[0] = sign_of(r1, s.speed, 1e-12);
-  s.s[1] = sign_of(z1, s.speed, 1e-12);
-  const double k = r1 * z2 - r2 * z1;
-  s.s[2] = sign_of(k, std::abs(r1 * z2) + std::abs(r2 * z1), 1e-9);
-  const double kd = r1 * z3 - r3 * z1;  // K' (the r''z'' terms cancel)
-  const double dot12 = r1 * r2 + z1 * z2;
-  const double n = kd * speed2 - 3.0 * k * dot12;
-  const double n_scale = (std::abs(r1 * z3) + std::abs(r3 * z1)) * speed2 +
-                         3.0 * std::abs(k) * (std::abs(r1 * r2) + std::abs(z1 * z2));
-  s.s[3] = sign_of(n, n_scale, 1e-9);
-  return s;
-}
-
-// Bisection for a sign change of function `which` between a (sign sa != 0) and b.
-double bisect_sign_change(const Piece& piece, int which, double a, double b, signed char sa) {
-  for (int it = 0; it < 80; ++it) {
-    const double m = 0.5 * (a + b);
-    if (!(m > a && m < b)) break;  // the bracket is one ulp wide
-    const signed char sm = sample_signs(piece, m).s[which];
-    if (sm == 0) return m;
-    if (sm == sa) {
-      a = m;
-    } else {
-      b = m;
-    }
+// Control points relative to the segment's first point (so magnitudes, and
+// the error bounds that scale with them, measure the segment, not its place),
+// scaled by powers of two (exact: a uniform scale and a positive factor on W
+// change no sign). Input error: a Bezier piece's points are the input; a
+// B-spline's segment points come from blossoming (p levels of convex
+// combinations, each within ~9u of the window's magnitude, bounded by the
+// piece's largest coordinate and weight) and a division and product;
+// (12p + 16) u of those magnitudes covers that with room.
+void segment_functions(const BezierSegment& seg, bool blossomed, double coord_mag, double weight_mag,
+                       SegmentFunctions& out) {
+  constexpr double kU = DBL_EPSILON / 2;
+  const int p = seg.degree();
+  const bool rational = !seg.weights.empty() &&
+                        std::any_of(seg.weights.begin(), seg.weights.end(),
+                                    [&](double w) { return w != seg.weights.front(); });
+  const Vec2 o = seg.points.front();
+  BernsteinPoly X, Y, W;
+  for (BernsteinPoly* q : {&X, &Y, &W}) {
+    q->b.resize(p + 1);
+    q->err.resize(p + 1);
   }
-  return 0.5 * (a + b);
+  // Blossomed points: within (12p + 16) u of the window's magnitudes (absolute).
+  const double c_in = blossomed ? (12.0 * p + 16.0) * kU : 0.0;
+  double mx = 0.0, my = 0.0, mw = 0.0;
+  for (int i = 0; i <= p; ++i) {
+    const double w = rational ? seg.weights[i] : 1.0;
+    const Vec2& q = seg.points[i];
+    X.b[i] = w * (q.x() - o.x());
+    Y.b[i] = w * (q.y() - o.y());
+    W.b[i] = w;
+    // The difference and the product round (2u of the result); a blossomed
+    // point and o each carry the blossom's error, times the weight.
+    X.err[i] = 3 * kU * std::abs(X.b[i]) + c_in * (rational ? weight_mag : 1.0) * 3 * coord_mag;
+    Y.err[i] = 3 * kU * std::abs(Y.b[i]) + c_in * (rational ? weight_mag : 1.0) * 3 * coord_mag;
+    W.err[i] = rational ? c_in * weight_mag : 0.0;
+    mx = std::max(mx, std::abs(X.b[i]));
+    my = std::max(my, std::abs(Y.b[i]));
+    mw = std::max(mw, w);
+  }
+  // One power of two for X and Y (a uniform scale), another for W.
+  auto pow2_inv = [](double m) {
+    if (!(m > 0) || !std::isfinite(m)) return 1.0;
+    int e;
+    std::frexp(m, &e);
+    return std::ldexp(1.0, -e);
+  };
+  const double sxy = pow2_inv(std::max(mx, my)), sw = pow2_inv(mw);
+  for (int i = 0; i <= p; ++i) {
+    X.b[i] *= sxy;
+    X.err[i] *= sxy;
+    Y.b[i] *= sxy;
+    Y.err[i] *= sxy;
+    W.b[i] *= sw;
+    W.err[i] *= sw;
+  }
+
+  const BernsteinPoly X1 = bernstein_derivative(X), Y1 = bernstein_derivative(Y);
+  out.curved = p >= 2;
+  if (!rational) {
+    out.f[0] = X1;
+    out.f[1] = Y1;
+    out.speed2 = bernstein_axpy(1, bernstein_mul(X1, X1), 1, bernstein_mul(Y1, Y1));
+    if (!out.curved) return;
+    const BernsteinPoly X2 = bernstein_derivative(X1), Y2 = bernstein_derivative(Y1);
+    const BernsteinPoly D = bernstein_axpy(1, bernstein_mul(X1, Y2), -1, bernstein_mul(X2, Y1));
+    const BernsteinPoly dot = bernstein_axpy(1, bernstein_mul(X1, X2), 1, bernstein_mul(Y1, Y2));
+    out.f[2] = D;
+    out.f[3] = bernstein_axpy(1, bernstein_mul(bernstein_derivative(D), out.speed2), -3, bernstein_mul(D, dot));
+    return;
+  }
+  const BernsteinPoly W1 = bernstein_derivative(W);
+  const BernsteinPoly Ax = bernstein_axpy(1, bernstein_mul(X1, W), -1, bernstein_mul(X, W1));
+  const BernsteinPoly Ay = bernstein_axpy(1, bernstein_mul(Y1, W), -1, bernstein_mul(Y, W1));
+  out.f[0] = Ax;
+  out.f[1] = Ay;
+  out.speed2 = bernstein_axpy(1, bernstein_mul(Ax, Ax), 1, bernstein_mul(Ay, Ay));
+  if (!out.curved) return;
+  const BernsteinPoly X2 = bernstein_derivative(X1), Y2 = bernstein_derivative(Y1), W2 = bernstein_derivative(W1);
+  // det[P, P', P''] expanded along P.
+  const BernsteinPoly m0 = bernstein_axpy(1, bernstein_mul(Y1, W2), -1, bernstein_mul(W1, Y2));
+  const BernsteinPoly m1 = bernstein_axpy(1, bernstein_mul(X1, W2), -1, bernstein_mul(W1, X2));
+  const BernsteinPoly m2 = bernstein_axpy(1, bernstein_mul(X1, Y2), -1, bernstein_mul(Y1, X2));
+  const BernsteinPoly D = bernstein_axpy(
+      1, bernstein_axpy(1, bernstein_mul(X, m0), -1, bernstein_mul(Y, m1)), 1, bernstein_mul(W, m2));
+  const BernsteinPoly Ax1 = bernstein_derivative(Ax), Ay1 = bernstein_derivative(Ay);
+  const BernsteinPoly dot = bernstein_axpy(1, bernstein_mul(Ax, Ax1), 1, bernstein_mul(Ay, Ay1));
+  const BernsteinPoly lead = bernstein_axpy(1, bernstein_mul(bernstein_derivative(D), W), 3, bernstein_mul(D, W1));
+  out.f[2] = D;
+  out.f[3] = bernstein_axpy(1, bernstein_mul(lead, out.speed2), -3, bernstein_mul(bernstein_mul(D, W), dot));
 }
 
-// Golden-section minimum of the speed on [a, b].
-double speed_minimum(const Piece& piece, double a, double b, double* min_speed) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = sample_signs(piece, c).speed, fd = sample_signs(piece, d).speed;
-  for (int it = 0; it < 60 && b - a > 1e-15 * (std::abs(a) + std::abs(b) + 1.0); ++it) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = sample_signs(piece, c).speed;
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = sample_signs(piece, d).speed;
+// Parts of a segment narrower than this (in t) are not halved further: below
+// it a sign change is located to within a few ulp of the parameter anyway.
+constexpr double kTinyPart = 0x1p-44;
+// Halvings per function and segment; the bundled models need a few dozen.
+constexpr int kMaxBoxes = 1 << 14;
+
+// Turns the sign items of one function over consecutive segments into split
+// parameters: wherever the proven sign before differs from the proven sign
+// after. Between two proven parts lie a proven simple root (split there), or
+// undecided parts (split at a knot inside them if there is one, where the
+// function may jump, else at their middle), or nothing but a knot.
+struct SignTrack {
+  int last = 0;         // last proven sign (0: none yet)
+  double gap_lo = 0.0;  // where the last proven information ended
+  void see(int sign, double at, const std::vector<double>& breaks, std::vector<double>& splits) {
+    if (last != 0 && sign != last) {
+      const auto k = std::lower_bound(breaks.begin(), breaks.end(), gap_lo);
+      splits.push_back(k != breaks.end() && *k <= at ? *k : 0.5 * (gap_lo + at));
     }
+    last = sign;
   }
-  *min_speed = std::min(fc, fd);
-  return fc < fd ? c : d;
-}
+};
 
 // Scratch reused across calls (rebuilding deformable solids is a hot path).
 struct SplitScratch {
   std::vector<double> breaks;   // knot-span boundaries of the piece
   std::vector<double> splits;   // split parameters found so far
-  std::vector<SignSample> samples;
+  std::vector<SignItem> items;
+  SegmentFunctions fn;
 };
 
-// Appends to `splits` the sign changes of r', z', K, N and the singular points
-// found by sampling [a, b] with `cells` cells per knot span inside it.
-void scan_interval(const Piece& piece, double a, double b, int cells, const std::vector<double>& breaks,
-                   std::vector<SignSample>& samples, std::vector<double>& splits) {
-  samples.clear();
-  // The cell ends next to a knot or an end of [a, b] are pulled inside by 1e-7
-  // of the cell's span, so each sample sees one polynomial span and no
-  // singular end point.
-  double sa = a;
-  auto k = std::upper_bound(breaks.begin(), breaks.end(), a);
-  while (sa < b) {
-    const double sb = (k != breaks.end() && *k < b) ? *k++ : b;
-    const double h = sb - sa;
-    for (int i = 0; i <= cells; ++i) {
-      double u = sa + h * i / cells;
-      if (i == 0) u = sa + 1e-7 * h;
-      if (i == cells) u = sb - 1e-7 * h;
-      samples.push_back(sample_signs(piece, u));
+// Appends to `splits` the sign changes of r', z', K and N and the singular
+// points of the piece, from the proven isolation on each Bezier segment.
+// Returns false when the work bound stopped an isolation (the spans are then
+// not proven to be spirals).
+bool isolate_splits(const Piece& piece, SplitScratch& sc) {
+  const std::vector<BezierSegment> segs = piece_bezier_segments(piece);
+  double coord_mag = 0.0, weight_mag = 1.0;
+  for (const Vec2& q : piece.points) coord_mag = std::max({coord_mag, std::abs(q.x()), std::abs(q.y())});
+  for (double w : piece.weights) weight_mag = std::max(weight_mag, w);
+  const bool blossomed = piece.kind == PieceKind::bspline;
+  SignTrack track[4];
+  // Singular points: interior runs where |A|^2 is not proven positive.
+  bool in_run = false, seen_positive = false;
+  double run_lo = 0.0;
+  bool complete = true;
+  for (const BezierSegment& seg : segs) {
+    segment_functions(seg, blossomed, coord_mag, weight_mag, sc.fn);
+    const double u0 = seg.u0, h = seg.u1 - seg.u0;
+    auto at = [&](double t) { return t == 1.0 ? seg.u1 : u0 + h * t; };
+    for (int f = 0; f < 4; ++f) {
+      if (f >= 2 && !sc.fn.curved) continue;
+      complete &= bernstein_sign_items(sc.fn.f[f], kTinyPart, kMaxBoxes, sc.items);
+      for (const SignItem& it : sc.items) {
+        if (it.left == 0) continue;
+        track[f].see(it.left, at(it.t0), sc.breaks, sc.splits);
+        if (it.right != it.left) {
+          sc.splits.push_back(at(it.root));
+          track[f].last = it.right;
+        }
+        track[f].gap_lo = at(it.t1);
+      }
     }
-    sa = sb;
-  }
-
-  // Sign changes of each function between consecutive non-zero samples.
-  for (int f = 0; f < 4; ++f) {
-    signed char last = 0;
-    double last_u = a;
-    for (const SignSample& s : samples) {
-      if (s.s[f] == 0) continue;
-      if (last != 0 && s.s[f] != last) splits.push_back(bisect_sign_change(piece, f, last_u, s.u, last));
-      last = s.s[f];
-      last_u = s.u;
+    complete &= bernstein_sign_items(sc.fn.speed2, kTinyPart, kMaxBoxes, sc.items);
+    for (const SignItem& it : sc.items) {
+      if (it.left == 0) {
+        if (!in_run) {
+          in_run = true;
+          run_lo = at(it.t0);
+        }
+        continue;
+      }
+      if (in_run && seen_positive) {
+        // A cusp is a sign change of r' or z' inside the run, found exactly:
+        // the run's middle only stands for a singular point with no other split.
+        const double run_hi = at(it.t0);
+        bool covered = false;
+        for (double u : sc.splits) covered |= u >= run_lo && u <= run_hi;
+        if (!covered) {
+          const auto k = std::lower_bound(sc.breaks.begin(), sc.breaks.end(), run_lo);
+          sc.splits.push_back(k != sc.breaks.end() && *k <= run_hi ? *k : 0.5 * (run_lo + run_hi));
+        }
+      }
+      in_run = false;
+      seen_positive = true;
     }
   }
-
-  // Singular points: interior local minima of the speed that are numerically zero.
-  double max_speed = 0.0;
-  for (const SignSample& s : samples) max_speed = std::max(max_speed, s.speed);
-  for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
-    const double v = samples[i].speed;
-    if (v <= samples[i - 1].speed && v <= samples[i + 1].speed && v < 1e-3 * max_speed) {
-      double vmin = 0.0;
-      const double u = speed_minimum(piece, samples[i - 1].u, samples[i + 1].u, &vmin);
-      if (vmin <= 1e-8 * max_speed) splits.push_back(u);
-    }
-  }
+  return complete;
 }
 
 // Sorts `splits` in (a, b), snapping to knots and dropping duplicates and ends.
 void tidy_splits(std::vector<double>& splits, const std::vector<double>& breaks, double a, double b) {
-  // A bisection that converged on a jump at a knot stops an ulp or so beside
-  // it: snap to the knot, so each side of the split is one polynomial span.
+  // A root within rounding of a knot is the knot: each side of the split is
+  // then one polynomial span.
   const double tiny = 1e-12 * (b - a);
   for (double& u : splits) {
     const auto k = std::lower_bound(breaks.begin(), breaks.end(), u);
@@ -179,10 +248,7 @@ void tidy_splits(std::vector<double>& splits, const std::vector<double>& breaks,
   splits.resize(kept);
 }
 
-// Samples per knot span: 8 per degree of freedom of the span.
-int cells_for(const Piece& piece) { return 8 * (piece.degree + 1); }
-
-void collect_curve_splits(const Piece& piece, SplitScratch& sc) {
+bool collect_curve_splits(const Piece& piece, SplitScratch& sc) {
   const auto [lo, hi] = piece_domain(piece);
   sc.breaks.clear();
   sc.splits.clear();
@@ -202,12 +268,13 @@ void collect_curve_splits(const Piece& piece, SplitScratch& sc) {
     }
   }
   sc.breaks.push_back(hi);
-  scan_interval(piece, lo, hi, cells_for(piece), sc.breaks, sc.samples, sc.splits);
+  const bool complete = isolate_splits(piece, sc);
   tidy_splits(sc.splits, sc.breaks, lo, hi);
+  return complete;
 }
 
 void push_span(std::vector<SpiralSpan>& out, int index, SpanKind kind, double u0, double u1,
-               const SpanEnds& ends) {
+               const SpanEnds& ends, bool proven = true) {
   if (ends.p0 == ends.p1) return;  // a zero-length part (a degenerate piece)
   SpiralSpan s;
   s.piece = index;
@@ -215,6 +282,7 @@ void push_span(std::vector<SpiralSpan>& out, int index, SpanKind kind, double u0
   s.u0 = u0;
   s.u1 = u1;
   s.ends = ends;
+  s.proven = proven;
   out.push_back(s);
 }
 
@@ -223,34 +291,6 @@ SpanEnds curve_ends(const Piece& piece, double ua, double ub) {
   e.p0 = piece_tangent(piece, ua, +1, &e.t0, &e.k0);
   e.p1 = piece_tangent(piece, ub, -1, &e.t1, &e.k1);
   return e;
-}
-
-// Emits the spans of piece[ua, ub], re-scanning it 8 times finer (up to three
-// times) when its end data contradict the spiral hypotheses: turning over 90
-// degrees or Vogt's inequality broken mean the coarse scan missed a pair of
-// sign changes inside one cell (a near-cusp, a tiny wiggle).
-void emit_curve_spans(const Piece& piece, int index, double ua, double ub, const std::vector<double>& breaks,
-                      int depth, std::vector<SpiralSpan>& out) {
-  const SpanEnds e = curve_ends(piece, ua, ub);
-  if (depth < 3 && !lens_bound(e).hypotheses_ok) {
-    // Rare path: a local list is fine here.
-    std::vector<double> splits;
-    std::vector<SignSample> samples;
-    int cells = cells_for(piece);
-    for (int i = 0; i <= depth; ++i) cells *= 8;
-    scan_interval(piece, ua, ub, cells, breaks, samples, splits);
-    tidy_splits(splits, breaks, ua, ub);
-    if (!splits.empty()) {
-      splits.push_back(ub);
-      double a = ua;
-      for (double b : splits) {
-        emit_curve_spans(piece, index, a, b, breaks, depth + 1, out);
-        a = b;
-      }
-      return;
-    }
-  }
-  push_span(out, index, SpanKind::curve, ua, ub, e);
 }
 
 }  // namespace
@@ -339,12 +379,12 @@ void split_into_spirals(const Profile& profile, std::vector<SpiralSpan>& out) {
       }
       case PieceKind::bezier:
       case PieceKind::bspline: {
-        collect_curve_splits(piece, sc);
+        const bool proven = collect_curve_splits(piece, sc);
         const auto [lo, hi] = piece_domain(piece);
         sc.splits.push_back(hi);
         double ua = lo;
         for (double ub : sc.splits) {
-          emit_curve_spans(piece, index, ua, ub, sc.breaks, 0, out);
+          push_span(out, index, SpanKind::curve, ua, ub, curve_ends(piece, ua, ub), proven);
           ua = ub;
         }
         break;

@@ -33,6 +33,10 @@ struct SpiralSpan {
   SpanKind kind = SpanKind::curve;
   double u0 = 0.0, u1 = 0.0;
   SpanEnds ends;
+  // The isolation of the split points finished within its work bound, so r',
+  // z', K and N are proven to keep one sign on the span (to within a few ulp
+  // of the parameter at its ends). Always true for lines and arcs.
+  bool proven = true;
 };
 
 // Appends the spirals of every piece of `profile`, in chain order, to `out`
@@ -41,9 +45,12 @@ struct SpiralSpan {
 //
 // Split points of a Bezier / B-spline piece: the sign changes of r', z', of
 // K = r'z'' - r''z' (inflections) and of N = |C'|^5 dkappa/du (curvature
-// extrema), the local minima of the speed that are (numerically) zero
-// (singular points), and the interior knots where the curve is not C2 (its
-// curvature may jump there). A line piece is one span; an arc piece is split
+// extrema), the points where the speed is zero to within rounding (singular
+// points), and the interior knots where the curve is not C2 (its curvature may
+// jump there). The sign changes are isolated with proof on the polynomial
+// numerators of each Bezier segment (homogeneous form for rational ones; see
+// fast/bernstein.h): every sign change is found, and a root of even
+// multiplicity (no sign change) is not split at. A line piece is one span; an arc piece is split
 // at its r and z extremes so that each span turns by at most 90 degrees.
 // Zero-length pieces contribute nothing.
 void split_into_spirals(const Profile& profile, std::vector<SpiralSpan>& out);

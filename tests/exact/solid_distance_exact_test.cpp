@@ -5,9 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
 #include <string>
+#include <vector>
+
+#include "core/case_io.h"
 
 namespace revdist {
 namespace {
@@ -151,11 +158,13 @@ TEST(SolidDistanceExact, LinkedToriPerpendicularContinuum) {
   // Congruent rings in perpendicular planes, each through the other's centre:
   // |P_A - P_B|^2 = R^2 (3 - 2 cos a + 2 cos b (1 - cos a)) >= R^2, with equality at
   // cos b = -1 for EVERY a: B's point at A's centre is R from all of A's core. The
-  // tori are R - 2r apart along a whole circle of closest pairs, the case the mean-
-  // value forms resolve slowly (every box on the circle stays live), so a wider target.
+  // tori are R - 2r apart along a whole circle of closest pairs. The search alone
+  // cannot narrow it (every box on the circle stays live); the tube path settles it.
   const double R = 1.0, r = 0.25, h = std::sqrt(0.5);
-  check(torus(R, r), pose({0, 0, 0}), torus(R, r), pose({R, 0, 0}, {h, h, 0, 0}), R - 2 * r,
-        "linked tori (perpendicular continuum)", 1e-4);
+  const ExactSolidResult x = check(torus(R, r), pose({0, 0, 0}), torus(R, r), pose({R, 0, 0}, {h, h, 0, 0}),
+                                   R - 2 * r, "linked tori (perpendicular continuum)");
+  EXPECT_GT(x.closed_form_pairs, 0);
+  EXPECT_EQ(x.boxes, 0);
 }
 
 TEST(SolidDistanceExact, BallInCupCavity) {
@@ -210,6 +219,167 @@ TEST(SolidDistanceExact, TouchingIsZeroWithin) {
   EXPECT_TRUE(r.certified);
   EXPECT_EQ(r.lower, 0.0);
   EXPECT_LE(r.upper, 1e-9 * r.scale) << r.reason;
+}
+
+
+// --- Structural paths (tube pairs), the double filter, progress, and the data ---
+
+// The seed of a random test: REVDIST_SEED overrides the fallback; printed for replay.
+std::uint64_t seed_of(std::uint64_t fallback, const char* what) {
+  const char* s = std::getenv("REVDIST_SEED");
+  const std::uint64_t seed = s ? std::strtoull(s, nullptr, 10) : fallback;
+  std::printf("[ seed     ] %s: REVDIST_SEED=%llu\n", what, static_cast<unsigned long long>(seed));
+  return seed;
+}
+
+// Two proven brackets of one distance must meet.
+void expect_meet(const ExactSolidResult& x, const ExactSolidResult& y, const char* what) {
+  EXPECT_LE(x.lower, y.upper) << what;
+  EXPECT_LE(y.lower, x.upper) << what;
+}
+
+TEST(SolidDistanceExact, TubePairsAgreeWithSearchOnRandomTori) {
+  // Closed form (circle distance minus tube radii) against the branch and bound
+  // alone on the same exact curves, random poses and tube radii.
+  std::mt19937_64 rng(seed_of(7, "TubePairsAgreeWithSearchOnRandomTori"));
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int k = 0; k < 4; ++k) {
+    const double Ra = 1.0 + 0.5 * U(rng), ra = 0.2 + 0.1 * U(rng);
+    const double Rb = 1.0 + 0.5 * U(rng), rb = 0.2 + 0.1 * U(rng);
+    const Pose pa = pose({0, 0, 0}, {1 + 0.3 * U(rng), U(rng), U(rng), U(rng)});
+    const Pose pb = pose({2.5 + U(rng), U(rng), U(rng)}, {U(rng), U(rng), U(rng), 1.5});
+    ExactSolidOptions tube;
+    const ExactSolidResult x = solid_distance_exact(torus(Ra, ra), pa, torus(Rb, rb), pb, tube);
+    ExactSolidOptions search;
+    search.use_structure = false;
+    search.relative_width = 1e-6;  // the search alone is slower; its bracket need only meet the other
+    const ExactSolidResult y = solid_distance_exact(torus(Ra, ra), pa, torus(Rb, rb), pb, search);
+    std::printf("tori %d: tube [%.17g, %.17g] (%d closed form, %ld boxes, %.1f ms); search [%.17g, %.17g] %.1f ms\n",
+                k, x.lower, x.upper, x.closed_form_pairs, x.boxes, x.time_ms, y.lower, y.upper, y.time_ms);
+    ASSERT_TRUE(x.certified && y.certified);
+    EXPECT_TRUE(x.width_reached) << x.reason;
+    EXPECT_GT(x.closed_form_pairs, 0);
+    expect_meet(x, y, "tube vs search");
+    EXPECT_NEAR((x.point_a - x.point_b).norm(), x.upper, 1e-12 * x.scale);  // witnesses realise the upper end
+  }
+}
+
+// A ring of four rational quadratic quarter circles whose middle weight is the
+// double nearest sqrt(2)/2: not exactly circles, so the tube path must prove an
+// annulus around each (Bernstein bounds) rather than assume one.
+Profile rounded_weight_ring(double R, double r) {
+  const double w = 0.7071067811865476;
+  auto quarter = [&](Vec2 p0, Vec2 p1, Vec2 p2) {
+    Piece p;
+    p.kind = PieceKind::bezier;
+    p.degree = 2;
+    p.points = {p0, p1, p2};
+    p.weights = {1, w, 1};
+    return p;
+  };
+  return Profile{{quarter({R + r, 0}, {R + r, r}, {R, r}), quarter({R, r}, {R - r, r}, {R - r, 0}),
+                  quarter({R - r, 0}, {R - r, -r}, {R, -r}), quarter({R, -r}, {R + r, -r}, {R + r, 0})},
+                 true};
+}
+
+TEST(SolidDistanceExact, RoundedWeightRingsLinkedContinuum) {
+  const double R = 1.0, r = 0.25, h = std::sqrt(0.5);
+  const ExactSolidResult x = check(rounded_weight_ring(R, r), pose({0, 0, 0}), rounded_weight_ring(R, r),
+                                   pose({R, 0, 0}, {h, h, 0, 0}), R - 2 * r, "rounded-weight rings (continuum)");
+  EXPECT_GT(x.closed_form_pairs, 0);
+}
+
+TEST(SolidDistanceExact, SphereAroundPointAndCoaxialTori) {
+  // A sphere's arcs are tubes around a point (a circle of radius 0): closed form.
+  const ExactSolidResult s = check(sphere(0.5), pose({0.1, 0.2, 0.3}), sphere(2), pose({4, 0.2, 0.3}, {0.8, 0.1, 0.2, 0.3}),
+                                   1.4, "sphere vs sphere (points as circles)");
+  EXPECT_GT(s.closed_form_pairs, 0);
+  // Coaxial tori one above the other: equidistant along the whole circle.
+  const ExactSolidResult t = check(torus(1, 0.25), pose({0, 0, 0}), torus(1, 0.25), pose({0, 0, 1}), 0.5,
+                                   "coaxial stacked tori (continuum)");
+  EXPECT_GT(t.closed_form_pairs, 0);
+}
+
+TEST(SolidDistanceExact, DoubleBoundsAgreeWithMpfiBounds) {
+  // The double filter is a second, looser proof of the same boxes: brackets meet,
+  // and both reach the width target. Free-form (3-D boxes) and lines (2-D).
+  const Pose pe = pose({1.6, 0.2, 0.4}, {0.9, 0.1, 0.3, 0.2});
+  for (int k = 0; k < 2; ++k) {
+    const Profile other = k == 0 ? egg() : cylinder(0.5, 1.0);
+    ExactSolidOptions on, off;
+    // MPFI-only runs ~10x slower; a narrower target would prove no more here.
+    on.relative_width = off.relative_width = k == 0 ? 1e-5 : 1e-7;
+    off.double_bounds = false;
+    const ExactSolidResult x = solid_distance_exact(egg(), pose({0, 0, 0}), other, pe, on);
+    const ExactSolidResult y = solid_distance_exact(egg(), pose({0, 0, 0}), other, pe, off);
+    std::printf("doubles [%.17g, %.17g] %.1f ms; mpfi [%.17g, %.17g] %.1f ms (%ld mpfi boxes)\n", x.lower, x.upper,
+                x.time_ms, y.lower, y.upper, y.time_ms, y.mpfi_boxes);
+    ASSERT_TRUE(x.certified && y.certified);
+    EXPECT_TRUE(x.width_reached && y.width_reached);
+    EXPECT_EQ(y.mpfi_boxes, y.boxes);
+    expect_meet(x, y, "doubles vs mpfi");
+  }
+}
+
+TEST(SolidDistanceExact, ProgressReportsNestedBrackets) {
+  std::vector<ExactProgress> seen;
+  ExactSolidOptions o;
+  o.progress_interval_s = 0.0;  // every check: at least one report on any query that searches
+  o.use_structure = false;
+  o.progress = [&](const ExactProgress& p) { seen.push_back(p); };
+  const ExactSolidResult r = solid_distance_exact(egg(), pose({0, 0, 0}), egg(), pose({1.5, 0.3, 0.2}, {0.9, 0.3, 0.1, 0}), o);
+  ASSERT_TRUE(r.certified);
+  ASSERT_FALSE(seen.empty()) << r.boxes << " boxes";
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_LE(seen[i].lower, r.upper);
+    EXPECT_GE(seen[i].upper, r.lower);
+    EXPECT_LE(seen[i].boxes, r.boxes);
+    if (i > 0) EXPECT_GE(seen[i].boxes, seen[i - 1].boxes);
+  }
+}
+
+TEST(SolidDistanceExact, ConeAgainstRationalBellConverges) {
+  // Regression: over a wide box the weight's interval reached 0, a cost became NaN
+  // (0 x inf) and the box was taken for unsplittable, so the bracket stayed [0, 0.61].
+  Piece bell;
+  bell.kind = PieceKind::bezier;
+  bell.degree = 4;
+  bell.points = {{0, 0}, {1.2, 0.1}, {0.2, 0.7}, {0.9, 1.3}, {0, 1.6}};
+  bell.weights = {1, 3, 0.5, 2, 1};
+  const Profile cone{{line({0, 0}, {0.6, 0}), line({0.6, 0}, {0, 1.5})}, false};
+  ExactSolidOptions o;
+  const ExactSolidResult r =
+      solid_distance_exact(cone, pose({1.9, 0.3, 0.2}, {0.9, 0.2, -0.3, 0.1}), Profile{{bell}, false}, pose({0, 0, 0}), o);
+  std::printf("cone vs bell [%.17g, %.17g] %ld boxes %.1f ms\n", r.lower, r.upper, r.boxes, r.time_ms);
+  ASSERT_TRUE(r.certified);
+  EXPECT_TRUE(r.width_reached) << r.reason;
+  EXPECT_GT(r.lower, 0.35);  // fast/ brackets it at 0.3506531173 (tol 1e-9)
+  EXPECT_LT(r.upper, 0.351);
+}
+
+// Every query of the bundled distance cases and regressions: certified, to the
+// default width 1e-9 x scale, each within 2 s of CPU (the engine's target).
+TEST(SolidDistanceExact, BundledCasesCertifyQuickly) {
+  for (const char* dir : {"cases/distance", "cases/regressions"}) {
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(std::string(REVDIST_SOURCE_DIR) + "/" + dir))
+      if (e.path().extension() == ".json") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    for (const std::string& f : files) {
+      const Case c = read_case(f);
+      for (const auto& [ia, ib] : c.queries) {
+        const Instance& A = c.instances[ia];
+        const Instance& B = c.instances[ib];
+        const ExactSolidResult r = solid_distance_exact(profile_at(c.solids[A.solid], A.time), A.pose,
+                                                        profile_at(c.solids[B.solid], B.time), B.pose);
+        SCOPED_TRACE(f + " " + A.name + "-" + B.name);
+        EXPECT_TRUE(r.certified) << r.reason;
+        EXPECT_TRUE(r.width_reached) << r.reason;
+        EXPECT_LE(r.upper - r.lower, 1e-9 * r.scale);
+        EXPECT_LT(r.time_ms, 2000.0);
+      }
+    }
+  }
 }
 
 }  // namespace

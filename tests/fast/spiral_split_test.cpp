@@ -105,6 +105,72 @@ TEST(SpiralSplit, QuadraticBsplineSplitsAtEveryKnot) {
   check_spiral_hypotheses(p, spans);
 }
 
+// A cubic whose z' = c((u - m)^2 - d^2) dips below 0 between m - d and m + d,
+// both inside one cell of a 32-cell sampling of [0, 1] (cells [k/32, (k+1)/32]):
+// the two sign changes of z' have the same sign on either side of the cell,
+// so sampling sees neither. The tangent turns below the horizontal there; a
+// span across the dip breaks the lens hypotheses (regression for issue 10:
+// the sampled split missed both).
+TEST(SpiralSplit, FindsSignChangePairInsideOneSampleCell) {
+  const double m = 12.5 / 32, d = 0.012, c = 2.0;
+  // r = u + 0.1, z(u) = c ((u - m)^3 / 3 - d^2 u) + 1, in the Bernstein basis.
+  const double a0 = c * (-m * m * m / 3) + 1, a1 = c * (m * m - d * d), a2 = -c * m, a3 = c / 3;
+  const Piece p = bezier_piece({{0.1, a0}, {0.1 + 1.0 / 3, a0 + a1 / 3}, {0.1 + 2.0 / 3, a0 + 2 * a1 / 3 + a2 / 3},
+                                {1.1, a0 + a1 + a2 + a3}});
+  const auto spans = split_one(p);
+  for (double root : {m - d, m + d}) {
+    bool found = false;
+    for (const SpiralSpan& s : spans) found |= std::abs(s.u1 - root) <= 1e-12;  // a few ulp of the root
+    EXPECT_TRUE(found) << "no split at the sign change of z' at u = " << root;
+  }
+  check_spiral_hypotheses(p, spans);
+}
+
+// Weights (1, c, c^2, c^3) re-parametrise a polynomial cubic without changing
+// its shape (a Moebius map of the parameter): the rational path (homogeneous
+// numerators, degree 3p - 3 and 8p - 6) must split at the same points as the
+// polynomial path (degree 2p - 3 and 4p - 6).
+TEST(SpiralSplit, RationalReparametrisationSplitsAtTheSamePoints) {
+  const std::uint64_t seed = test_seed(5);
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uc(0.5, 2.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    SCOPED_TRACE(trial);
+    const Piece poly = random_bezier(rng, false);
+    const double c = uc(rng);
+    Piece rat = poly;
+    rat.weights = {1.0, c, c * c, c * c * c};
+    const auto a = split_one(poly), b = split_one(rat);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_TRUE(a[i].proven && b[i].proven);
+      // A root located to ~1e-15 in the parameter; the point moves with the
+      // speed (<= ~10 here), and the Moebius map and its rounding cost a few ulp more.
+      EXPECT_LE((a[i].ends.p1 - b[i].ends.p1).norm(), 1e-12);
+    }
+    check_spiral_hypotheses(rat, b);
+  }
+}
+
+// A rational quadratic with weights (1, cos 45deg, 1) is a quarter circle:
+// N vanishes identically (constant curvature), only to rounding in double,
+// and must not be split at; r', z' and K keep one sign.
+TEST(SpiralSplit, QuarterCircleConicIsOneSpan) {
+  const auto spans = split_one(bezier_piece({{0.35, 0}, {0.4, 0}, {0.4, 0.05}}, {1, std::sqrt(0.5), 1}));
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_TRUE(spans[0].proven);
+}
+
+// An ellipse quarter as a rational quadratic, not symmetric: its curvature
+// has one extreme inside, where N changes sign once.
+TEST(SpiralSplit, ConicSplitsAtItsCurvatureExtreme) {
+  const Piece p = bezier_piece({{1, 0}, {1, 2}, {0.2, 2}}, {1, 0.8, 1});
+  const auto spans = split_one(p);
+  EXPECT_EQ(spans.size(), 2u);
+  check_spiral_hypotheses(p, spans);
+}
+
 TEST(SpiralSplit, RandomCurvesSatisfyHypotheses) {
   const std::uint64_t seed = test_seed(99);
   std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
@@ -112,7 +178,9 @@ TEST(SpiralSplit, RandomCurvesSatisfyHypotheses) {
   for (int trial = 0; trial < 40; ++trial) {
     const Piece p = trial % 2 ? random_bezier(rng, trial % 4 == 1) : random_bspline(rng, 3, 7, trial % 4 == 2);
     SCOPED_TRACE(trial);
-    check_spiral_hypotheses(p, split_one(p));
+    const auto spans = split_one(p);
+    for (const SpiralSpan& s : spans) EXPECT_TRUE(s.proven);
+    check_spiral_hypotheses(p, spans);
   }
 }
 
