@@ -10,5 +10,7 @@ void add_distance_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_scene_command(CLI::App& app);
 void add_scene_gen_command(CLI::App& app);
+void add_stress_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace revdist::cli

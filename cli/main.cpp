@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   revdist::cli::add_bench_command(app);
   revdist::cli::add_scene_command(app);
   revdist::cli::add_scene_gen_command(app);
+  revdist::cli::add_stress_command(app);
+  revdist::cli::add_compare_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -256,4 +256,14 @@ std::vector<CircleFamilyPair> make_circle_family(const std::string& name, int n,
   throw std::invalid_argument("unknown circle family \"" + name + "\"");
 }
 
+CircleFamilyPair make_circle_family_pair(const std::string& name, long index, std::uint64_t seed) {
+  for (const auto& e : entries()) {
+    if (e.family.name != name) continue;
+    Rng rng(seed);
+    // The makers cycle their variants on i with periods 2, 4, 5 and 10 (n is unused).
+    return e.make(rng, static_cast<int>(index % 60), 60);
+  }
+  throw std::invalid_argument("unknown circle family \"" + name + "\"");
+}
+
 }  // namespace revdist

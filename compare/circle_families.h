@@ -33,6 +33,10 @@ const std::vector<CircleFamily>& circle_families();
 // n pairs of the named family from the seed; throws std::invalid_argument on an unknown name.
 std::vector<CircleFamilyPair> make_circle_family(const std::string& name, int n, std::uint64_t seed);
 
+// Pair `index` of the named family from its own seed (no stream shared with
+// other indices, so any slice of indices can be made alone: stress shards).
+CircleFamilyPair make_circle_family_pair(const std::string& name, long index, std::uint64_t seed);
+
 double circle_pair_scale(const CirclePair& p);
 
 }  // namespace revdist
