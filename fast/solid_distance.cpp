@@ -269,8 +269,12 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // Stop when lower >= ub - tol or lower >= ub / (1 + rel_tol): either tolerance met.
   auto cut = [&] { return rel > 0 ? std::min(ub - opt.tol, ub / (1.0 + rel)) : ub - opt.tol; };
   const bool threshold = std::isfinite(opt.threshold);
+  // Upper bounds are rounded outward: the rounded norm of two rounded witness
+  // points, each a few ulps of the coordinates from the true surface point it
+  // stands for.
+  const double up_round = 32 * DBL_EPSILON * coord;
   auto offer = [&](const Vec3& x, const Vec3& y) {
-    const double d = (x - y).norm();
+    const double d = (x - y).norm() + up_round;
     if (d < ub) {
       ub = d;
       res.point_a = x;
@@ -427,7 +431,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
 
   double lb = settled_lb;
   if (!heap.empty()) lb = std::min(lb, heap.top().lb);
-  if (containment_unknown) lb = 0.0;
+  if (containment_unknown) {
+    lb = 0.0;
+    if (res.reason.empty())
+      res.reason = "containment undecided: a surface point of one solid lies within rounding of the other's boundary";
+  }
   lb = std::max(lb, 0.0);
   if (!(ub < kInf)) {
     res.reason = "no candidate pair found";
