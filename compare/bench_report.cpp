@@ -237,7 +237,9 @@ int paper_eps_index(double eps) {
 
 std::string count(double v) {
   if (!std::isfinite(v)) return "–";
-  if (v >= 1e6) return fmt("%.3gM", v / 1e6);
+  // %.4g keeps 1000M and more in plain digits (%.3g printed "1.44e+03M").
+  if (v >= 1e9) return fmt("%.4gG", v / 1e9);
+  if (v >= 1e6) return fmt("%.4gM", v / 1e6);
   if (v >= 1e4) return fmt("%.3gK", v / 1e3);
   return fmt("%.0f", v);
 }
