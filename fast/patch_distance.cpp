@@ -401,7 +401,7 @@ namespace {
 
 // A point of patch P at profile fraction u in [0, 1] and azimuth th (radians
 // about P's axis, from the frame (e1, e2) normal to it).
-Vec3 patch_point_at(const Patch& P, double u, double th, const Vec3& e1, const Vec3& e2, double* r_local) {
+Vec3 patch_point_at(const Patch& P, double u, double th, const Vec3& e1, const Vec3& e2) {
   Vec2 q;
   if (P.straight) {
     q = P.p0 + u * (P.p1 - P.p0);
@@ -411,29 +411,20 @@ Vec3 patch_point_at(const Patch& P, double u, double th, const Vec3& e1, const V
     q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
   }
   q.x() = std::max(q.x(), 0.0);
-  *r_local = q.x();
   return P.o + q.x() * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
 }
 
 }  // namespace
 
-bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, int* evaluations) {
-  // Q lies in its bounding torus (disk circle + disk radius) and on its whole
-  // surface (g_Q = 0). Every function used is 1-Lipschitz (distance to a
-  // circle, |(rho, z) - c| - rho, n . (rho, z) - off: the map to Q's (rho, z)
-  // half-plane does not increase distances), so over a box of P held by a ball
-  // (c, r) each stays within r of its value at c.
+bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
+  // Q lies in its bounding disk in its own (rho, z) half-plane and on its
+  // whole surface (g_Q = 0). Both tests are 1-Lipschitz functions of Q's
+  // (rho, z) (|q - disk centre|, |q - c| - rho, n . q - off), and the map to
+  // that half-plane does not increase distances, so over a box of P held by a
+  // ball (x, r) each stays within r of its value at x.
   Vec2 dc;
   double dr;
   patch_disk(Q, &dc, &dr);
-  const Circle3 qd = patch_disk_circle(Q, dc);
-  const Vec3 qn = qd.normal.normalized();
-  auto circle_dist = [&](const Vec3& x) {
-    const Vec3 d = x - qd.center;
-    const double h = d.dot(qn);
-    const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
-    return std::sqrt(h * h + (rho - qd.radius) * (rho - qd.radius));
-  };
   const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
   const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
@@ -446,20 +437,14 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, in
     stack[n++] = {0.0, 1.0, -M_PI + k * (2 * M_PI / kSectors), -M_PI + (k + 1) * (2 * M_PI / kSectors)};
   while (n > 0) {
     const Box b = stack[--n];
-    if (++evals > budget) {
-      *evaluations = evals;
-      return false;
-    }
-    double rl;
-    const Vec3 c = patch_point_at(P, 0.5 * (b.u0 + b.u1), 0.5 * (b.t0 + b.t1), e1, e2, &rl);
+    if (++evals > budget) return false;
+    const Vec3 c = patch_point_at(P, 0.5 * (b.u0 + b.u1), 0.5 * (b.t0 + b.t1), e1, e2);
     const double prof = 0.5 * (b.u1 - b.u0) * len, azi = 0.5 * (b.t1 - b.t0) * rmax;
     const double r = prof + azi + margin;
-    if (circle_dist(c) - dr > r) continue;  // this box is outside Q's bounding torus
-    if (std::abs(patch_surface_function(Q, patch_local(Q, c))) > r) continue;  // off Q's surface
-    if (n + 2 > 64) {
-      *evaluations = evals;
-      return false;
-    }
+    const Vec2 qc = patch_local(Q, c);
+    if ((qc - dc).norm() - dr > r) continue;                      // outside Q's bounding torus
+    if (std::abs(patch_surface_function(Q, qc)) > r) continue;   // off Q's surface
+    if (n + 2 > 64) return false;
     if (prof >= azi) {
       const double um = 0.5 * (b.u0 + b.u1);
       stack[n++] = {b.u0, um, b.t0, b.t1};
@@ -470,7 +455,6 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, in
       stack[n++] = {b.u0, b.u1, tm, b.t1};
     }
   }
-  *evaluations = evals;
   return true;
 }
 
@@ -492,9 +476,8 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
     // The bounding tori meet: try the cheap proof that the patches are apart
     // (boxes of the smaller patch against the other's surface), else the sign
     // tests over every candidate below.
-    int evals = 0;
     const bool a_small = ea <= eb;
-    if (a_small ? patches_apart(A, B, gtol, 256, &evals) : patches_apart(B, A, gtol, 256, &evals)) need_g = false;
+    if (a_small ? patches_apart(A, B, gtol, 256) : patches_apart(B, A, gtol, 256)) need_g = false;
   }
   Collector c{A, B, 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() * coord, cutoff, need_g, {}};
 

@@ -58,9 +58,9 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
 // range, 16 sectors to start), each held by a ball; a box is cleared when its
 // ball misses Q's bounding torus or Q's whole surface (1-Lipschitz functions
 // evaluated at the ball's centre, `margin` for rounding), else split. True
-// when every box clears within `budget` evaluations (*evaluations says how
-// many); false means "not proven", not "they meet".
-bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget, int* evaluations);
+// when every box clears within `budget` evaluations; false means "not
+// proven", not "they meet".
+bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 
 // Lower bound on the distance between two patches from their bounding tori.
 double patch_disk_bound(const Patch& A, const Patch& B);
