@@ -13,30 +13,12 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
-
-CommandRun run(const std::string& args) {
-  const std::string err_file = testing::TempDir() + "revdist_bench_stderr_" + std::to_string(getpid()) + ".txt";
-  CommandRun r;
-  FILE* p = popen((std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file).c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  std::remove(err_file.c_str());
-  return r;
-}
+using revdist_test::CommandRun;
+using revdist_test::run;
 
 std::string read(const std::filesystem::path& p) {
   std::ifstream f(p);

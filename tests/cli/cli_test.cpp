@@ -14,35 +14,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-CommandRun run(const std::string& args) {
-  // One file per call: ctest runs the tests of this binary in parallel processes.
-  static int calls = 0;
-  const std::string err_file = testing::TempDir() + "revdist_cli_stderr_" + std::to_string(getpid()) + "_" +
-                               std::to_string(++calls) + ".txt";
-  const std::string cmd = std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file;
-  CommandRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  if (FILE* e = std::fopen(err_file.c_str(), "r")) {
-    while ((n = fread(buf.data(), 1, buf.size(), e)) > 0) r.err.append(buf.data(), n);
-    std::fclose(e);
-  }
-  std::remove(err_file.c_str());
-  return r;
-}
+using revdist_test::CommandRun;
+using revdist_test::run;
 
 std::string src(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }
 

@@ -14,13 +14,9 @@
 #include <sstream>
 #include <string>
 
-namespace {
+#include "cli_run.h"
 
-struct CommandRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
+namespace {
 
 std::string temp_path(const std::string& stem) {
   static int calls = 0;
@@ -28,25 +24,11 @@ std::string temp_path(const std::string& stem) {
          stem;
 }
 
-// Runs the binary through the shell (args may redirect stdout); stderr goes to a file.
+using revdist_test::CommandRun;
+
+// Runs the binary through the shell (args may redirect stdout), under a 60 s timeout.
 CommandRun run(const std::string& args, const std::string& stdin_from = "") {
-  const std::string err_file = temp_path("stderr.txt");
-  const std::string cmd =
-      stdin_from + "timeout 60 " + std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file;
-  CommandRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  std::remove(err_file.c_str());
-  return r;
+  return revdist_test::run(args, stdin_from + "timeout 60 ");
 }
 
 std::string src(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }

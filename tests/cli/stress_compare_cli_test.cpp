@@ -12,30 +12,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
-
-CommandRun run(const std::string& args) {
-  static int calls = 0;
-  const std::string err_file = testing::TempDir() + "revdist_sc_stderr_" + std::to_string(getpid()) + "_" +
-                               std::to_string(++calls) + ".txt";
-  CommandRun r;
-  FILE* p = popen((std::string(REVDIST_BINARY) + " " + args + " 2>" + err_file).c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  std::remove(err_file.c_str());
-  return r;
-}
+using revdist_test::CommandRun;
+using revdist_test::run;
 
 std::string src(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }
 std::string tmp(const std::string& name) { return testing::TempDir() + "revdist_sc_" + std::to_string(getpid()) + "_" + name; }
