@@ -397,29 +397,92 @@ std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Ci
   // One definition with the distance kernel: closest pairs that form a
   // continuum (decided there to rounding, e.g. coaxial circles whose rotated
   // doubles left the polynomial a few ulps from zero) whose point on b is off
-  // a's axis (so it has one nearest point on a) move along b: a continuum of feet.
-  // (A closest point of b on a's axis is one foot with a cone of lines.)
+  // a's axis (so it has one nearest point on a) move along b: a continuum of
+  // lines. (A closest point of b on a's axis has finitely many lines: those in
+  // the plane normal to b there.) A point b on a's axis sees all of a: a cone.
   bool inf = false;
   const Circle3Circle3Result d = circle3_circle3_distance(a, b);
-  if (d.status == CircleCircleStatus::infinitely_many && a.radius > 0 && b.radius > 0) {
-    const Vec3 n = a.normal.normalized();
-    const double scale = std::max({a.radius, b.radius, (a.center - b.center).norm()});
+  const Vec3 n = unit_normal(a.normal);
+  const double scale = std::max({a.radius, b.radius, (a.center - b.center).norm()});
+  if (d.status == CircleCircleStatus::infinitely_many && a.radius > 0 && b.radius > 0)
     inf = (d.point_b - a.center).cross(n).norm() > 1e-9 * scale;
-  }
+  if (b.radius == 0 && a.radius > 0 && (b.center - a.center).cross(n).norm() <= 1e-9 * scale) inf = true;
   const auto lines = inf ? std::vector<Line>{} : all_lines(a, b, &inf);
   if (infinitely_many) *infinitely_many = inf;
   if (inf) return {};
-  // One line per distinct point Q of b (lines come sorted by θ; the seam at ±π
-  // is checked against the first).
-  std::vector<Line> per_q;
-  const double same_th = 1e-9;
-  for (const Line& l : lines) {
-    auto it = std::find_if(per_q.begin(), per_q.end(),
-                           [&](const Line& u) { return std::abs(wrap_pi(l.th - u.th)) <= same_th; });
-    if (it == per_q.end()) per_q.push_back(l);
-    else if (l.dist < it->dist) *it = l;
+  if (a.radius == 0 || b.radius == 0) return to_public(make_frame(b), lines);
+  // One entry per line, except that roots of one branch the rounding cannot
+  // separate are one line: consecutive lines of the same branch (near: the foot
+  // on a on Q's side of a's axis; far: opposite) between which the branch
+  // derivative ψ stays within its rounding at every sample. On nearly coaxial
+  // or nearly tangent circles ψ is that flat over a whole arc and the solver
+  // polishes a root anywhere in it; the exact engine sees the one (or two
+  // close) roots of the given doubles there.
+  const double sigma = circle_pair_sigma(a, b);
+  const CircleFrame fa = make_frame(a), fb = make_frame(b);
+  const PairCoeffs k = make_coeffs(fb, fa, sigma);
+  auto branch = [&](const Line& l) {
+    const Vec3 q = on_b(fb, l.th) - a.center, pa = l.on_a - a.center;
+    const Vec3 qp = q - q.dot(fa.n) * fa.n;
+    if (qp.norm() <= 64 * kEps * scale) return 0;  // Q on a's axis: lines of a cone, kept apart
+    return qp.dot(pa) > 0 ? 1 : -1;
+  };
+  // ψσ at t, its rounding (as polish_branch judges it) and its slope.
+  auto psi_at = [&](int sg, double t, double* noise, double* slope) {
+    const Pt p = at(k, t);
+    const double rho = std::sqrt(p.X * p.X + p.Y * p.Y);
+    const double Qp = p.X * p.X1 + p.Y * p.Y1;
+    const double L1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.Z1 * p.Z1 + p.X * p.X2 + p.Y * p.Y2 + p.Z * p.Z2;
+    const double Qp1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.X * p.X2 + p.Y * p.Y2;
+    *noise = 16 * kEps * (std::abs(p.X) + std::abs(p.Y) + std::abs(p.Z)) *
+             (std::abs(p.X1) + std::abs(p.Y1) + std::abs(p.Z1)) * (1 + k.R / rho);
+    *slope = L1 - sg * k.R * (Qp1 / rho - Qp * Qp / (rho * rho * rho));
+    return Qp + p.Z * p.Z1 - sg * k.R * Qp / rho;
+  };
+  auto flat = [&](int sg, double t) {
+    double noise, slope;
+    return std::abs(psi_at(sg, t, &noise, &slope)) <= noise;
+  };
+  // How far a root polished to rounding may sit from the true one: the
+  // rounding over the slope (a double root: the flat zone around it).
+  auto spread = [&](int sg, double t) {
+    double noise, slope;
+    psi_at(sg, t, &noise, &slope);
+    return std::min(0.25, noise / std::abs(slope));
+  };
+  std::vector<Line> kept;
+  for (int sg : {1, -1, 0}) {
+    std::vector<Line> br;
+    for (const Line& l : lines)
+      if (branch(l) == sg) br.push_back(l);  // sorted by θ
+    if (sg == 0 || br.size() < 2) {
+      kept.insert(kept.end(), br.begin(), br.end());
+      continue;
+    }
+    auto joined = [&](const Line& l, const Line& r) {  // r after l going up in θ (mod 2π)
+      double gap = r.th - l.th;
+      if (gap <= 0) gap += 2 * kPi;
+      if (gap > 0.25) return false;  // far apart: never one root
+      if (gap <= 4 * (spread(sg, l.th) + spread(sg, r.th))) return true;
+      constexpr int kSamples = 8;
+      for (int i = 1; i < kSamples; ++i)
+        if (!flat(sg, l.th + gap * i / kSamples)) return false;
+      return true;
+    };
+    // Start a cluster where the previous line (cyclically) is not joined.
+    std::size_t s0 = 0;
+    while (s0 < br.size() && joined(br[(s0 + br.size() - 1) % br.size()], br[s0])) ++s0;
+    if (s0 == br.size()) {  // one cluster around the whole circle
+      kept.push_back(br[0]);
+      continue;
+    }
+    for (std::size_t i = 0; i < br.size(); ++i) {
+      const std::size_t j = (s0 + i) % br.size();
+      if (i == 0 || !joined(br[(j + br.size() - 1) % br.size()], br[j])) kept.push_back(br[j]);
+    }
   }
-  return to_public(make_frame(b), per_q);
+  std::sort(kept.begin(), kept.end(), [](const Line& x, const Line& y) { return x.th < y.th; });
+  return to_public(fb, kept);
 }
 
 }  // namespace revdist
