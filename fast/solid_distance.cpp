@@ -174,6 +174,21 @@ struct Solid {
     return s.R * local + s.t;
   }
 
+  // A genuine surface point near world point x: a greedy descent of the disks
+  // towards x's meridian point, then the nearest point of that fit's span.
+  Vec3 nearest_surface_point(const Vec3& x) {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+    std::int32_t i = 0;
+    long refined = 0;  // tree nodes only: parts with a fit end the descent
+    while (!parts[i].has_fit) {
+      const std::int32_t c = split(i, &refined);
+      const Part &c0 = parts[c], &c1 = parts[c + 1];
+      i = (q - c0.disk_c).norm() - c0.disk_r <= (q - c1.disk_c).norm() - c1.disk_r ? c : c + 1;
+    }
+    return true_point(parts[i].fit, x);
+  }
+
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
   Vec3 some_surface_point() const {
     const Vec2 p = s.profile->pieces.front().start();
@@ -258,6 +273,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   auto proven_overlap = [&](const Vec3& p) {
     res.overlap = true;
     res.converged = true;
+    res.decided = std::isfinite(opt.threshold);  // distance 0 settles any threshold
     res.lower = res.upper = res.distance = 0.0;
     res.point_a = res.point_b = p;
     return res;
@@ -295,6 +311,20 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     Vec3 p;
     if (containment_unknown && A.interior_point(&p) && B.side_of(p, round) == Side::inside) return proven_overlap(p);
     if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
+  }
+
+  // A threshold query answered "closer" needs only one witness pair below the
+  // threshold: a few rounds of alternating projection onto the surfaces, from
+  // the closest pair of the root disks' circles, usually find one, and the
+  // best-first loop below, which would first tighten every bound under the
+  // threshold, then stops at once.
+  if (threshold) {
+    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
+    for (int i = 0; i < 3 && !(ub <= opt.threshold); ++i) {
+      const Vec3 x = A.nearest_surface_point(y);
+      y = B.nearest_surface_point(x);
+      offer(x, y);
+    }
   }
 
   std::priority_queue<Entry> heap;
