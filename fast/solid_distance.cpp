@@ -50,17 +50,18 @@ struct Part {
 // One side of the query: the solid, its parts and cached world data.
 struct Solid {
   const PosedSolid& s;
+  BiarcTreeView tree;  // s.tree; a lazy tree's nodes are built here when first split
   std::vector<Part> parts;
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
 
-  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
+  explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
   }
 
   Part from_node(std::int32_t node, int level) const {
-    const BiarcNode& n = s.tree->nodes[node];
+    const BiarcNode& n = tree.node(node);
     Part p;
     p.node = node;
     p.level = level;
@@ -68,7 +69,7 @@ struct Solid {
     p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
     if (n.fit >= 0) {
       p.has_fit = n.leaf();
-      p.fit = s.tree->fits[n.fit];
+      p.fit = tree.fit(n.fit);
     }
     return p;
   }
@@ -89,7 +90,7 @@ struct Solid {
     const Part p = parts[i];  // copy: push_back may reallocate
     Part c0, c1;
     if (!p.has_fit) {
-      const std::int32_t tc = s.tree->nodes[p.node].child;
+      const std::int32_t tc = tree.children(p.node);
       c0 = from_node(tc, 0);
       c1 = from_node(tc + 1, 0);
     } else {
@@ -200,17 +201,18 @@ struct Solid {
   // profile's size, checked against the true profile. Solids that share their
   // surfaces (identical, or stacked flush) are proven to overlap with it.
   bool interior_point(Vec3* out) const {
+    const BiarcTree& whole = s.tree->complete(*s.profile);
     double size = 0.0;
-    for (const BiarcFit& f : s.tree->fits) size = std::max(size, f.arc[0].start.norm());
-    for (const BiarcNode& n : s.tree->nodes) {
+    for (const BiarcFit& f : whole.fits) size = std::max(size, f.arc[0].start.norm());
+    for (const BiarcNode& n : whole.nodes) {
       if (!n.leaf() || n.fit < 0) continue;
-      const Arc2& a = s.tree->fits[n.fit].arc[0];
+      const Arc2& a = whole.fits[n.fit].arc[0];
       if (a.length <= 0) continue;
       const Vec2 m = a.point(0.5 * a.length);
       const Vec2 t = a.tangent_at(0.5 * a.length);
       for (double side : {1.0, -1.0}) {
         const Vec2 q = m + side * 1e-3 * size * Vec2(-t.y(), t.x());
-        if (q.x() < 0 || profile_side(*s.tree, q, 1e-9 * size) != Side::inside) continue;
+        if (q.x() < 0 || profile_side(whole, q, 1e-9 * size) != Side::inside) continue;
         *out = s.R * Vec3(q.x(), 0, q.y()) + s.t;
         return true;
       }
@@ -227,7 +229,7 @@ struct Solid {
     const Vec3 d = s.R.transpose() * (x - s.t);
     const Vec2 q(std::hypot(d.x(), d.y()), d.z());
     if ((q - parts[0].disk_c).norm() > parts[0].disk_r + margin) return Side::outside;
-    return profile_side(*s.tree, q, margin);
+    return profile_side(s.tree->complete(*s.profile), q, margin);
   }
 };
 
@@ -276,6 +278,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     res.decided = std::isfinite(opt.threshold);  // distance 0 settles any threshold
     res.lower = res.upper = res.distance = 0.0;
     res.point_a = res.point_b = p;
+    st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
     return res;
   };
 
@@ -459,6 +462,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     split_pair(e, split_a);
   }
 
+  st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
   double lb = settled_lb;
   if (!heap.empty()) lb = std::min(lb, heap.top().lb);
   if (containment_unknown) {
