@@ -7,8 +7,6 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
-#include <memory>
-#include <mutex>
 
 #include "core/curve_eval.h"
 #include "fast/biarc_fit.h"
@@ -282,23 +280,11 @@ BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0,
   return f;
 }
 
-struct BiarcTree::Complete {
-  std::once_flag once;
-  BiarcTree tree;
-};
-
-const BiarcTree& BiarcTree::complete(const Profile& profile) const {
-  if (!lazy) return *this;
-  std::call_once(complete_->once, [&] { rebuild_biarc_tree(profile, eps, complete_->tree); });
-  return complete_->tree;
-}
-
 void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats, bool lazy) {
   tree.nodes.clear();
   tree.fits.clear();
   tree.pending.clear();
   tree.lazy = lazy;
-  tree.complete_ = lazy ? std::make_shared<BiarcTree::Complete>() : nullptr;
   tree.eps = eps;
   split_into_spirals(profile, tree.spirals);
 

@@ -26,7 +26,6 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "core/arc2.h"
@@ -67,16 +66,9 @@ struct BiarcTree {
   double max_error = 0.0;  // max eps over the leaves (claimed, proven by the lens bound)
   double slack = 0.0;      // rounding allowance added to every proven bound (64 ulp of the profile's size)
   double exact_length = 0.0;  // exact lines and arcs are split down to this length
-  // Lazy trees: the spans of the pending nodes, and the whole tree for the few
-  // readers that need every leaf (point-in-solid tests), built on first use.
+  // Lazy trees: the spans of the pending nodes.
   bool lazy = false;
   std::vector<SpiralSpan> pending;
-  struct Complete;
-  std::shared_ptr<Complete> complete_;
-
-  // The tree with every node built: *this when eager; for a lazy tree an eager
-  // build of `profile` (the one it was built from), once, safe from any number of threads.
-  const BiarcTree& complete(const Profile& profile) const;
 
   // Bytes of the tree proper (nodes and fits); the spiral list is build input.
   std::size_t bytes() const { return nodes.size() * sizeof(BiarcNode) + fits.size() * sizeof(BiarcFit); }

@@ -200,19 +200,30 @@ struct Solid {
   // the middle of a leaf arc, to either side, by a small fraction of the
   // profile's size, checked against the true profile. Solids that share their
   // surfaces (identical, or stacked flush) are proven to overlap with it.
-  bool interior_point(Vec3* out) const {
-    const BiarcTree& whole = s.tree->complete(*s.profile);
-    double size = 0.0;
-    for (const BiarcFit& f : whole.fits) size = std::max(size, f.arc[0].start.norm());
-    for (const BiarcNode& n : whole.nodes) {
-      if (!n.leaf() || n.fit < 0) continue;
-      const Arc2& a = whole.fits[n.fit].arc[0];
+  bool interior_point(Vec3* out) {
+    const BiarcNode& root = tree.node(0);
+    // The scale of the profile: the root capsule holds it.
+    const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + (std::isfinite(root.radius) ? root.radius : 0.0);
+    // The first leaf in profile order (depth first, left child first).
+    std::vector<std::int32_t> stack{0};
+    while (!stack.empty()) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      const BiarcNode n = tree.node(i);
+      if (!n.leaf()) {
+        const std::int32_t c = tree.children(i);
+        stack.push_back(c + 1);
+        stack.push_back(c);
+        continue;
+      }
+      if (n.fit < 0) continue;
+      const Arc2 a = tree.fit(n.fit).arc[0];
       if (a.length <= 0) continue;
       const Vec2 m = a.point(0.5 * a.length);
       const Vec2 t = a.tangent_at(0.5 * a.length);
       for (double side : {1.0, -1.0}) {
         const Vec2 q = m + side * 1e-3 * size * Vec2(-t.y(), t.x());
-        if (q.x() < 0 || profile_side(whole, q, 1e-9 * size) != Side::inside) continue;
+        if (q.x() < 0 || profile_side(tree, q, 1e-9 * size) != Side::inside) continue;
         *out = s.R * Vec3(q.x(), 0, q.y()) + s.t;
         return true;
       }
@@ -225,11 +236,11 @@ struct Solid {
   // A point outside the root's disk is outside: the meridian section is
   // bounded by the profile (and the axis between its ends), all within that
   // convex disk; only points inside it pay for the scan over the leaves.
-  Side side_of(const Vec3& x, double margin) const {
+  Side side_of(const Vec3& x, double margin) {
     const Vec3 d = s.R.transpose() * (x - s.t);
     const Vec2 q(std::hypot(d.x(), d.y()), d.z());
     if ((q - parts[0].disk_c).norm() > parts[0].disk_r + margin) return Side::outside;
-    return profile_side(s.tree->complete(*s.profile), q, margin);
+    return profile_side(tree, q, margin);
   }
 };
 
