@@ -1,9 +1,11 @@
-// Point-in-profile test on the biarcs of a tree (ray crossing to r = +inf).
+// Point-in-profile test on the biarcs of a tree (ray crossing to r = +inf),
+// descending only the capsules near the ray or near the point.
 #include "fast/profile_side.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace revdist {
 
@@ -67,42 +69,66 @@ int arc_crossings(const Arc2& a, const Vec2& q, const Vec2& d, double tol) {
   return count;
 }
 
+// Distance from q to the segment a-b.
+double segment_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
+  const Vec2 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double s = l2 > 0 ? std::clamp((q - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (q - (a + s * d)).norm();
+}
+
+// Distance between the ray q + t d (t >= 0, |d| = 1) and the segment a-b (0 when they meet).
+double ray_segment_distance(const Vec2& q, const Vec2& d, const Vec2& a, const Vec2& b) {
+  const Vec2 n(-d.y(), d.x());
+  const double sa = n.dot(a - q), sb = n.dot(b - q);
+  if ((sa <= 0) != (sb <= 0) || sa == 0 || sb == 0) {
+    // The segment meets the ray's line at x; on the ray when ahead of q.
+    const Vec2 x = sa == sb ? a : a + (sa / (sa - sb)) * (b - a);
+    if (d.dot(x - q) >= 0) return 0.0;
+  }
+  auto to_ray = [&](const Vec2& p) { return (p - (q + std::max(0.0, d.dot(p - q)) * d)).norm(); };
+  return std::min({to_ray(a), to_ray(b), segment_distance(a, b, q)});
+}
+
 }  // namespace
 
-Side profile_side(const BiarcTree& tree, const Vec2& q, double margin) {
-  double dmin = std::numeric_limits<double>::infinity();
-  double eps = 0.0, size = 0.0;
-  for (const BiarcNode& n : tree.nodes) {
-    if (!n.leaf() || n.fit < 0) continue;
-    const BiarcFit& f = tree.fits[n.fit];
-    eps = std::max(eps, f.eps);
-    for (int i = 0; i < f.arcs; ++i) {
-      dmin = std::min(dmin, arc_distance(f.arc[i], q));
-      size = std::max({size, f.arc[i].start.norm(), f.arc[i].end().norm()});
-    }
-  }
-  if (!(dmin > margin + eps)) return Side::unknown;
-  // Parity of a ray's crossings. The ray goes towards larger r (it never meets
-  // the axis segment that closes an axis-to-axis profile) in a direction that
-  // passes no arc end point and touches no arc within rounding; shared end
-  // points of consecutive arcs differ by rounding, so a ray through one could
-  // be counted twice or not at all.
+Side profile_side(BiarcTreeView& tree, const Vec2& q, double margin) {
+  // The scale of rounding: the root capsule holds every profile point.
+  const BiarcNode& root = tree.node(0);
+  const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + (std::isfinite(root.radius) ? root.radius : 0.0);
   const double tol = 1e-12 * std::max(size, q.norm()) + 1e-300;
+  std::vector<std::int32_t> stack;
   for (int attempt = 0; attempt < 16; ++attempt) {
     // Directions spread over (-60, 60) degrees around +r, irrational steps.
     const double angle = (attempt == 0 ? 0.1234567 : std::fmod(0.1234567 + attempt * 0.7390851, 2.0) - 1.0) * 1.0471975;
     const Vec2 d(std::cos(angle), std::sin(angle));
     int crossings = 0;
     bool ambiguous = false;
-    for (const BiarcNode& n : tree.nodes) {
-      if (!n.leaf() || n.fit < 0) continue;
-      const BiarcFit& f = tree.fits[n.fit];
-      for (int i = 0; i < f.arcs && !ambiguous; ++i) {
-        if (f.arc[i].length <= 0) continue;
-        const int k = arc_crossings(f.arc[i], q, d, tol);
-        if (k < 0) ambiguous = true; else crossings += k;
+    stack.assign(1, 0);
+    while (!stack.empty() && !ambiguous) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      const BiarcNode n = tree.node(i);  // a copy: children() may move the view's nodes
+      // A capsule that misses the ray and keeps margin from q: its part of the
+      // true curve neither crosses the ray nor comes near q.
+      if (ray_segment_distance(q, d, n.seg_a, n.seg_b) - n.radius > tol &&
+          segment_distance(n.seg_a, n.seg_b, q) - n.radius > margin)
+        continue;
+      if (!n.leaf()) {
+        const std::int32_t c = tree.children(i);
+        stack.push_back(c + 1);
+        stack.push_back(c);
+        continue;
       }
-      if (ambiguous) break;
+      if (n.fit < 0) return Side::unknown;
+      const BiarcFit& f = tree.fit(n.fit);
+      for (int k = 0; k < f.arcs; ++k)
+        if (!(arc_distance(f.arc[k], q) > margin + f.eps)) return Side::unknown;
+      for (int k = 0; k < f.arcs && !ambiguous; ++k) {
+        if (f.arc[k].length <= 0) continue;
+        const int c = arc_crossings(f.arc[k], q, d, tol);
+        if (c < 0) ambiguous = true; else crossings += c;
+      }
     }
     if (!ambiguous) return crossings % 2 ? Side::inside : Side::outside;
   }

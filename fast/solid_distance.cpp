@@ -50,17 +50,18 @@ struct Part {
 // One side of the query: the solid, its parts and cached world data.
 struct Solid {
   const PosedSolid& s;
+  BiarcTreeView tree;  // s.tree; a lazy tree's nodes are built here when first split
   std::vector<Part> parts;
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
 
-  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
+  explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
   }
 
   Part from_node(std::int32_t node, int level) const {
-    const BiarcNode& n = s.tree->nodes[node];
+    const BiarcNode& n = tree.node(node);
     Part p;
     p.node = node;
     p.level = level;
@@ -68,7 +69,7 @@ struct Solid {
     p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
     if (n.fit >= 0) {
       p.has_fit = n.leaf();
-      p.fit = s.tree->fits[n.fit];
+      p.fit = tree.fit(n.fit);
     }
     return p;
   }
@@ -89,7 +90,7 @@ struct Solid {
     const Part p = parts[i];  // copy: push_back may reallocate
     Part c0, c1;
     if (!p.has_fit) {
-      const std::int32_t tc = s.tree->nodes[p.node].child;
+      const std::int32_t tc = tree.children(p.node);
       c0 = from_node(tc, 0);
       c1 = from_node(tc + 1, 0);
     } else {
@@ -174,6 +175,21 @@ struct Solid {
     return s.R * local + s.t;
   }
 
+  // A genuine surface point near world point x: a greedy descent of the disks
+  // towards x's meridian point, then the nearest point of that fit's span.
+  Vec3 nearest_surface_point(const Vec3& x) {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+    std::int32_t i = 0;
+    long refined = 0;  // tree nodes only: parts with a fit end the descent
+    while (!parts[i].has_fit) {
+      const std::int32_t c = split(i, &refined);
+      const Part &c0 = parts[c], &c1 = parts[c + 1];
+      i = (q - c0.disk_c).norm() - c0.disk_r <= (q - c1.disk_c).norm() - c1.disk_r ? c : c + 1;
+    }
+    return true_point(parts[i].fit, x);
+  }
+
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
   Vec3 some_surface_point() const {
     const Vec2 p = s.profile->pieces.front().start();
@@ -184,18 +200,30 @@ struct Solid {
   // the middle of a leaf arc, to either side, by a small fraction of the
   // profile's size, checked against the true profile. Solids that share their
   // surfaces (identical, or stacked flush) are proven to overlap with it.
-  bool interior_point(Vec3* out) const {
-    double size = 0.0;
-    for (const BiarcFit& f : s.tree->fits) size = std::max(size, f.arc[0].start.norm());
-    for (const BiarcNode& n : s.tree->nodes) {
-      if (!n.leaf() || n.fit < 0) continue;
-      const Arc2& a = s.tree->fits[n.fit].arc[0];
+  bool interior_point(Vec3* out) {
+    const BiarcNode& root = tree.node(0);
+    // The scale of the profile: the root capsule holds it.
+    const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + (std::isfinite(root.radius) ? root.radius : 0.0);
+    // The first leaf in profile order (depth first, left child first).
+    std::vector<std::int32_t> stack{0};
+    while (!stack.empty()) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      const BiarcNode n = tree.node(i);
+      if (!n.leaf()) {
+        const std::int32_t c = tree.children(i);
+        stack.push_back(c + 1);
+        stack.push_back(c);
+        continue;
+      }
+      if (n.fit < 0) continue;
+      const Arc2 a = tree.fit(n.fit).arc[0];
       if (a.length <= 0) continue;
       const Vec2 m = a.point(0.5 * a.length);
       const Vec2 t = a.tangent_at(0.5 * a.length);
       for (double side : {1.0, -1.0}) {
         const Vec2 q = m + side * 1e-3 * size * Vec2(-t.y(), t.x());
-        if (q.x() < 0 || profile_side(*s.tree, q, 1e-9 * size) != Side::inside) continue;
+        if (q.x() < 0 || profile_side(tree, q, 1e-9 * size) != Side::inside) continue;
         *out = s.R * Vec3(q.x(), 0, q.y()) + s.t;
         return true;
       }
@@ -208,11 +236,11 @@ struct Solid {
   // A point outside the root's disk is outside: the meridian section is
   // bounded by the profile (and the axis between its ends), all within that
   // convex disk; only points inside it pay for the scan over the leaves.
-  Side side_of(const Vec3& x, double margin) const {
+  Side side_of(const Vec3& x, double margin) {
     const Vec3 d = s.R.transpose() * (x - s.t);
     const Vec2 q(std::hypot(d.x(), d.y()), d.z());
     if ((q - parts[0].disk_c).norm() > parts[0].disk_r + margin) return Side::outside;
-    return profile_side(*s.tree, q, margin);
+    return profile_side(tree, q, margin);
   }
 };
 
@@ -258,8 +286,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   auto proven_overlap = [&](const Vec3& p) {
     res.overlap = true;
     res.converged = true;
+    res.decided = std::isfinite(opt.threshold);  // distance 0 settles any threshold
     res.lower = res.upper = res.distance = 0.0;
     res.point_a = res.point_b = p;
+    st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
     return res;
   };
 
@@ -295,6 +325,20 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     Vec3 p;
     if (containment_unknown && A.interior_point(&p) && B.side_of(p, round) == Side::inside) return proven_overlap(p);
     if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
+  }
+
+  // A threshold query answered "closer" needs only one witness pair below the
+  // threshold: a few rounds of alternating projection onto the surfaces, from
+  // the closest pair of the root disks' circles, usually find one, and the
+  // best-first loop below, which would first tighten every bound under the
+  // threshold, then stops at once.
+  if (threshold) {
+    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
+    for (int i = 0; i < 3 && !(ub <= opt.threshold); ++i) {
+      const Vec3 x = A.nearest_surface_point(y);
+      y = B.nearest_surface_point(x);
+      offer(x, y);
+    }
   }
 
   std::priority_queue<Entry> heap;
@@ -429,6 +473,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     split_pair(e, split_a);
   }
 
+  st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
   double lb = settled_lb;
   if (!heap.empty()) lb = std::min(lb, heap.top().lb);
   if (containment_unknown) {
