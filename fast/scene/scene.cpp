@@ -234,28 +234,32 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->instances = static_cast<long>(size());
   st->nodes_built += unreported_nodes_;
   unreported_nodes_ = 0;
-  for (std::size_t i = 0; i < size(); ++i) {
-    if (motion_[i].time_rate == 0) continue;
+  // Per instance, independent (a deforming instance has a shape of its own),
+  // so spread over the threads; the results do not depend on their number.
+  std::vector<long> built(size(), 0);
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
+    if (motion_[i].time_rate == 0) return;
     CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
     const SolidDef& def = solids_[shape.solid];
     const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
-    if (t == shape.time) continue;
+    if (t == shape.time) return;
     shape.time = t;
     shape.profile = profile_at(def, t);
     rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
-    st->nodes_built += static_cast<long>(shape.tree.nodes.size());
+    built[i] = static_cast<long>(shape.tree.nodes.size());
     fit_bounds(model_.shape_of[i]);
-  }
-  for (std::size_t i = 0; i < size(); ++i) {
+  }));
+  for (long b : built) st->nodes_built += b;
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
     if (f != 0 && !motion_[i].moving()) {
       boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
-      continue;
+      return;
     }
     const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
     model_.instances[i].R = p.rotation();
     model_.instances[i].t = p.translation;
     boxes_[i] = world_box(i);
-  }
+  }));
   st->broad_rebuilt = !tree_.refit(boxes_);
   st->broad_nodes = static_cast<long>(tree_.size());
 }

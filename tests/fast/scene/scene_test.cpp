@@ -258,14 +258,17 @@ Case deforming_scene(std::uint64_t seed, int side) {
 
 TEST(Scene, DeformingShapesMatchBruteForceLazyOrEager) {
   const Case c = deforming_scene(test_seed(29, "Deforming"), 3);
-  SceneOptions lazy;
+  SceneOptions lazy, threads;
   lazy.lazy_trees = true;
-  Scene e(c, SceneOptions{}), l(c, lazy);
+  threads.lazy_trees = true;
+  threads.threads = 2;  // shapes rebuilt in parallel too
+  Scene e(c, SceneOptions{}), l(c, lazy), t2(c, threads);
   long lazy_built = 0, eager_built = 0;
   for (double f : {0.0, 1.0, 7.0}) {
-    SceneStats se, sl;
+    SceneStats se, sl, st2;
     e.set_frame(f, &se);
     l.set_frame(f, &sl);
+    t2.set_frame(f, &st2);
     for (std::size_t i = 0; i < e.size(); ++i) {
       const double t = time_at_frame(c.instances[i].time, c.instances[i].motion, f, 4.0);
       EXPECT_GE(t, 0.0);
@@ -281,6 +284,8 @@ TEST(Scene, DeformingShapesMatchBruteForceLazyOrEager) {
     const std::vector<ScenePair> pe = e.within(0.3, &se), pl = l.within(0.3, &sl);
     // Both ask the same queries of trees with the same numbers.
     expect_same(pe, pl);
+    expect_same(pl, t2.within(0.3, &st2));
+    EXPECT_EQ(sl.nodes_built, st2.nodes_built);
     EXPECT_GT(pe.size(), 0u) << "no pair within 0.3: the test would check nothing";
     lazy_built += sl.nodes_built;
     eager_built += se.nodes_built;
