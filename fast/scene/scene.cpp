@@ -304,7 +304,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
-  tree_.pairs_within(d, &cand);
+  timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
   std::sort(cand.begin(), cand.end());
   // The remembered pairs, matched to the candidates (both sorted).
   std::vector<const PairMemory*> old(cand.size(), nullptr);

@@ -164,8 +164,10 @@ TEST(AabbTree, PairsWithinMatchBruteForceAfterBuildAndRefit) {
   EXPECT_EQ(tree.size(), 2 * boxes.size() - 1);
   for (int round = 0; round < 3; ++round) {
     for (double d : {0.0, 0.3, 2.0}) {
-      std::vector<PairKey> got;
+      std::vector<PairKey> got, got3;
       tree.pairs_within(d, &got);
+      tree.pairs_within(d, &got3, 3);
+      EXPECT_EQ(got, got3) << "threads changed the pairs or their order";
       std::sort(got.begin(), got.end());
       std::vector<PairKey> want;
       for (int i = 0; i < 400; ++i)
