@@ -15,6 +15,8 @@
 //    size?"); counters: per-frame CPU
 //    medians/p90 of blend + rebuild + query and of the query alone, and the
 //    nodes built (tree + query).
+//  - BM_SceneDeforming/lazy: frames of a 20 x 20 grid of deforming `morph`
+//    instances (time_rate), all pairs within 0.1, eager or lazy trees.
 // REVDIST_SEED overrides the motion seed.
 #include <benchmark/benchmark.h>
 
@@ -23,10 +25,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "compare/motion.h"
+#include "compare/random_geometry.h"
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
 #include "fast/scene/parallel.h"
@@ -196,8 +201,52 @@ void BM_DeformableFrame(benchmark::State& state) {
   state.counters["nodes_built_median"] = quantile(nodes, 0.5);
 }
 
+// A grid of side x side `morph` instances, each at its own keyframe time
+// running at its own rate (README "Scenes": time_rate) and spinning.
+Case deforming_grid(int side) {
+  std::ifstream in(std::string(REVDIST_SOURCE_DIR) + "/cases/models/morph.json");
+  const nlohmann::json morph = nlohmann::json::parse(in);
+  nlohmann::json doc{{"format", "revdist/1"}, {"solids", {{"morph", morph["solids"]["morph"]}}}};
+  Rng rng(seed());
+  nlohmann::json inst = nlohmann::json::array();
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      inst.push_back({{"name", "m" + std::to_string(i) + "_" + std::to_string(j)},
+                      {"solid", "morph"},
+                      {"time", rng.uniform(0, 4)},
+                      {"translation", {1.4 * i, 1.4 * j, 0}},
+                      {"motion", {{"time_rate", rng.uniform(-0.1, 0.1)}, {"spin", {0, 0, rng.uniform(-0.02, 0.02)}}}}});
+  doc["instances"] = inst;
+  return read_case_text(doc.dump(), "deforming_grid.json");
+}
+
+//  BM_SceneDeforming/lazy: frames of a 20 x 20 deforming grid (every shape
+//  blended and rebuilt each frame), all pairs within 0.1; per-frame CPU.
+void BM_SceneDeforming(benchmark::State& state) {
+  const Case c = deforming_grid(20);
+  SceneOptions o;
+  o.lazy_trees = state.range(0) != 0;
+  Scene scene(c, o);
+  std::vector<double> cpu, built;
+  long frame = 1, found = 0;
+  for (auto _ : state) {
+    SceneStats st;
+    scene.set_frame(static_cast<double>(frame++), &st);
+    const std::vector<ScenePair> pairs = scene.within(0.1, &st);
+    benchmark::DoNotOptimize(pairs.data());
+    cpu.push_back(st.cpu_ms);
+    built.push_back(static_cast<double>(st.nodes_built));
+    found += static_cast<long>(pairs.size());
+  }
+  state.counters["cpu_ms_median"] = quantile(cpu, 0.5);
+  state.counters["cpu_ms_p90"] = quantile(cpu, 0.9);
+  state.counters["nodes_built_median"] = quantile(built, 0.5);
+  state.counters["pairs_within"] = static_cast<double>(found) / static_cast<double>(frame - 1);
+}
+
 }  // namespace
 
+BENCHMARK(BM_SceneDeforming)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(30);
 BENCHMARK(BM_DeformableFrame)->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond)->Iterations(2000);
 BENCHMARK(BM_SceneWithin)->Args({1000, 1})->Args({1000, 2})->Args({10000, 1})->Args({10000, 2})
     ->Unit(benchmark::kMillisecond)->Iterations(8);

@@ -9,6 +9,7 @@
 #include <limits>
 #include <queue>
 
+#include "core/case_io.h"
 #include "fast/scene/parallel.h"
 
 namespace revdist {
@@ -141,42 +142,66 @@ void SceneStats::add(const SceneStats& o) {
   cpu_ms += o.cpu_ms;
 }
 
-Scene::Scene(const Case& c, const SceneOptions& options) : options_(options), model_(build_case_model(c, options.eps)) {
+Scene::Scene(const Case& c, const SceneOptions& options)
+    : options_(options), solids_(c.solids), model_(build_case_model(c, options.eps, options.lazy_trees)) {
   for (const Instance& inst : c.instances) {
     pose0_.push_back(inst.pose);
     motion_.push_back(inst.motion);
+    time0_.push_back(inst.time);
   }
-  // Per shape, a frontier of at most 32 tree capsules: tighter boxes than the
-  // root's capsule alone, and still cheap to move every frame.
-  for (const auto& shape : model_.shapes) {
-    const auto& nodes = shape->tree.nodes;
-    unreported_nodes_ += static_cast<long>(nodes.size());
-    std::vector<std::int32_t> level;
-    if (!nodes.empty()) level.push_back(0);
-    for (;;) {
-      std::vector<std::int32_t> next;
-      for (std::int32_t k : level) {
-        if (nodes[k].leaf()) next.push_back(k);
-        else next.insert(next.end(), {nodes[k].child, nodes[k].child + 1});
-      }
-      if (next.size() > 32 || next.size() == level.size()) break;
-      level = std::move(next);
-    }
-    std::vector<LocalBound> b;
-    double reach = 0.0;
-    for (std::int32_t k : level) {
-      b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
-      reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
-    }
-    reach_.push_back(reach);
-    bounds_.push_back(std::move(b));
+  // An instance whose keyframe time runs gets a shape of its own, rebuilt per frame.
+  for (std::size_t i = 0; i < c.instances.size(); ++i) {
+    if (motion_[i].time_rate == 0) continue;
+    const CaseModel::Shape& shared = *model_.shapes[model_.shape_of[i]];
+    auto own = std::make_unique<CaseModel::Shape>();
+    own->solid = shared.solid;
+    own->time = shared.time;
+    own->profile = shared.profile;
+    rebuild_biarc_tree(own->profile, options.eps, own->tree, &own->stats, options.lazy_trees);
+    model_.instances[i].profile = &own->profile;
+    model_.instances[i].tree = &own->tree;
+    model_.shape_of[i] = model_.shapes.size();
+    model_.shapes.push_back(std::move(own));
   }
+  bounds_.resize(model_.shapes.size());
+  reach_.resize(model_.shapes.size());
+  for (std::size_t k = 0; k < model_.shapes.size(); ++k) fit_bounds(k);
   boxes_.resize(size());
   SceneStats ignored;
   set_frame(0.0, &ignored);
-  // The trees were built for frame 0: the caller's first set_frame reports them.
+  // The trees were built for frame 0: the caller's first set_frame reports
+  // those in use (not the shared ones every instance of which has its own).
   unreported_nodes_ = 0;
-  for (const auto& shape : model_.shapes) unreported_nodes_ += static_cast<long>(shape->tree.nodes.size());
+  std::vector<char> used(model_.shapes.size(), 0);
+  for (std::size_t k : model_.shape_of) used[k] = 1;
+  for (std::size_t k = 0; k < used.size(); ++k)
+    if (used[k]) unreported_nodes_ += static_cast<long>(model_.shapes[k]->tree.nodes.size());
+}
+
+// Per shape, a frontier of at most 32 tree capsules: tighter boxes than the
+// root's capsule alone, and still cheap to move every frame. A lazy tree's
+// pending nodes end the frontier (their capsules hold their parts too).
+void Scene::fit_bounds(std::size_t shape) {
+  const auto& nodes = model_.shapes[shape]->tree.nodes;
+  std::vector<std::int32_t> level;
+  if (!nodes.empty()) level.push_back(0);
+  for (;;) {
+    std::vector<std::int32_t> next;
+    for (std::int32_t k : level) {
+      if (nodes[k].child < 0) next.push_back(k);
+      else next.insert(next.end(), {nodes[k].child, nodes[k].child + 1});
+    }
+    if (next.size() > 32 || next.size() == level.size()) break;
+    level = std::move(next);
+  }
+  std::vector<LocalBound>& b = bounds_[shape];
+  b.clear();
+  double reach = 0.0;
+  for (std::int32_t k : level) {
+    b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
+    reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
+  }
+  reach_[shape] = reach;
 }
 
 // The box of a rotated capsule: each end circle (radius |r| about the axis at
@@ -209,16 +234,32 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->instances = static_cast<long>(size());
   st->nodes_built += unreported_nodes_;
   unreported_nodes_ = 0;
-  for (std::size_t i = 0; i < size(); ++i) {
+  // Per instance, independent (a deforming instance has a shape of its own),
+  // so spread over the threads; the results do not depend on their number.
+  std::vector<long> built(size(), 0);
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
+    if (motion_[i].time_rate == 0) return;
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+    const SolidDef& def = solids_[shape.solid];
+    const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
+    if (t == shape.time) return;
+    shape.time = t;
+    shape.profile = profile_at(def, t);
+    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
+    built[i] = static_cast<long>(shape.tree.nodes.size());
+    fit_bounds(model_.shape_of[i]);
+  }));
+  for (long b : built) st->nodes_built += b;
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
     if (f != 0 && !motion_[i].moving()) {
       boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
-      continue;
+      return;
     }
     const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
     model_.instances[i].R = p.rotation();
     model_.instances[i].t = p.translation;
     boxes_[i] = world_box(i);
-  }
+  }));
   st->broad_rebuilt = !tree_.refit(boxes_);
   st->broad_nodes = static_cast<long>(tree_.size());
 }
@@ -263,7 +304,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
-  tree_.pairs_within(d, &cand);
+  timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
   std::sort(cand.begin(), cand.end());
   // The remembered pairs, matched to the candidates (both sorted).
   std::vector<const PairMemory*> old(cand.size(), nullptr);
@@ -271,7 +312,10 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
     std::size_t j = 0;
     for (std::size_t k = 0; k < cand.size(); ++k) {
       while (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) < cand[k]) ++j;
-      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid) old[k] = &memory_[j];
+      // A deforming shape's remembered witness points are no longer on its surface.
+      const bool rigid = motion_[cand[k].first].time_rate == 0 && motion_[cand[k].second].time_rate == 0;
+      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid && rigid)
+        old[k] = &memory_[j];
     }
   }
   std::vector<ScenePair> all(cand.size());
@@ -309,6 +353,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
     } else {
       ++st->narrow_calls;
       st->node_pairs += p.result.stats.node_pairs;
+      st->nodes_built += p.result.stats.nodes_built;
       if (p.result.decided) ++st->pairs_threshold;
     }
     if (!(p.result.lower > d)) out.push_back(std::move(p));
@@ -358,6 +403,7 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
       ++st->pairs_tested;
       st->narrow_calls += 1 + rerun[i];
       st->node_pairs += p.result.stats.node_pairs;
+      st->nodes_built += p.result.stats.nodes_built;
       if (p.result.decided && p.result.lower > t) {
         ++st->pairs_threshold;
         continue;
