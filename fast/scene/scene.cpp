@@ -143,7 +143,7 @@ void SceneStats::add(const SceneStats& o) {
 }
 
 Scene::Scene(const Case& c, const SceneOptions& options)
-    : options_(options), solids_(c.solids), model_(build_case_model(c, options.eps, options.lazy_trees)) {
+    : options_(options), solids_(c.solids), model_(build_case_model(c, options.eps)) {
   for (const Instance& inst : c.instances) {
     pose0_.push_back(inst.pose);
     motion_.push_back(inst.motion);
@@ -157,7 +157,9 @@ Scene::Scene(const Case& c, const SceneOptions& options)
     own->solid = shared.solid;
     own->time = shared.time;
     own->profile = shared.profile;
-    rebuild_biarc_tree(own->profile, options.eps, own->tree, &own->stats, options.lazy_trees);
+    own->stats = shared.stats;
+    if (options.lazy_trees) rebuild_biarc_tree(own->profile, options.eps, own->tree, &own->stats, true);
+    else own->tree = shared.tree;
     model_.instances[i].profile = &own->profile;
     model_.instances[i].tree = &own->tree;
     model_.shape_of[i] = model_.shapes.size();
