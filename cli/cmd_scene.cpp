@@ -176,7 +176,7 @@ void add_scene_command(CLI::App& app) {
   cmd->add_flag("--no-coherence", opts->no_coherence,
                 "--within: recompute every pair each frame instead of settling it from its previous frame");
   cmd->add_flag("--lazy", opts->lazy,
-                "lazy biarc trees: nodes fitted when a query first reaches them (deforming shapes rebuilt per frame)");
+                "lazy biarc trees for deforming shapes (time_rate): nodes fitted when a query first reaches them");
   cmd->callback([opts] { run(*opts); });
 }
 

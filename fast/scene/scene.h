@@ -26,8 +26,10 @@ struct SceneOptions {
   // have moved relative to the other solid a lower bound, which settles the
   // pair without a narrow-phase call when either decides "within d?".
   bool coherence = true;
-  // Lazy biarc trees (fast/biarc_tree.h): shapes whose keyframe time changes
-  // every frame ("time_rate") then cost what the queries touch.
+  // Lazy biarc trees (fast/biarc_tree.h) for the shapes whose keyframe time
+  // changes every frame ("time_rate"): a frame then costs what the queries
+  // touch. Static shapes stay eager: built once and shared by many pairs, they
+  // would be expanded again by every query (lazy expansion is per query).
   bool lazy_trees = false;
 };
 
