@@ -10,6 +10,7 @@
 #include <queue>
 
 #include "core/case_io.h"
+#include "core/curve_eval.h"
 #include "fast/scene/parallel.h"
 
 namespace revdist {
@@ -238,7 +239,8 @@ void Scene::set_frame(double f, SceneStats* st) {
   unreported_nodes_ = 0;
   // Per instance, independent (a deforming instance has a shape of its own),
   // so spread over the threads; the results do not depend on their number.
-  std::vector<long> built(size(), 0);
+  // A deforming shape is blended here; its tree waits for a query (build_stale).
+  stale_.resize(size(), 0);
   timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
     if (motion_[i].time_rate == 0) return;
     CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
@@ -247,11 +249,9 @@ void Scene::set_frame(double f, SceneStats* st) {
     if (t == shape.time) return;
     shape.time = t;
     shape.profile = profile_at(def, t);
-    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
-    built[i] = static_cast<long>(shape.tree.nodes.size());
-    fit_bounds(model_.shape_of[i]);
+    cylinder_bounds(model_.shape_of[i]);
+    stale_[i] = 1;
   }));
-  for (long b : built) st->nodes_built += b;
   timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
     if (f != 0 && !motion_[i].moving()) {
       boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
@@ -264,6 +264,60 @@ void Scene::set_frame(double f, SceneStats* st) {
   }));
   st->broad_rebuilt = !tree_.refit(boxes_);
   st->broad_nodes = static_cast<long>(tree_.size());
+}
+
+// The cylinder about the axis that holds every control point (a line's, a
+// Bezier's or a B-spline's curve lies in the hull of its control points, the
+// weights being positive) and every arc's whole circle: a box for a blended
+// shape whose tree is not built.
+void Scene::cylinder_bounds(std::size_t shape) {
+  double r = 0.0, z0 = kInf, z1 = -kInf;
+  auto hold = [&](double rr, double lo, double hi) {
+    r = std::max(r, rr);
+    z0 = std::min(z0, lo);
+    z1 = std::max(z1, hi);
+  };
+  for (const Piece& p : model_.shapes[shape]->profile.pieces) {
+    for (const Vec2& q : p.points) hold(std::abs(q.x()), q.y(), q.y());
+    if (p.kind == PieceKind::arc) {
+      const ArcGeometry g = arc_geometry(p);
+      if (std::isfinite(g.radius)) hold(std::abs(g.center.x()) + g.radius, g.center.y() - g.radius, g.center.y() + g.radius);
+    }
+  }
+  // Rounding of the arc's centre and radius: a few ulps of the coordinates.
+  const double pad = 64 * DBL_EPSILON * std::max({r, std::abs(z0), std::abs(z1)});
+  bounds_[shape] = {LocalBound{Vec2(r, z0), Vec2(r, z1), pad}};
+  reach_[shape] = std::hypot(r, std::max(std::abs(z0), std::abs(z1))) + pad;
+}
+
+const PosedSolid& Scene::solid(std::size_t i) const {
+  if (i < stale_.size() && stale_[i]) {
+    stale_[i] = 0;
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
+    unreported_nodes_ += static_cast<long>(shape.tree.nodes.size());  // reported by the next set_frame
+  }
+  return model_.instances[i];
+}
+
+// Builds the trees of the stale instances among `instances` (in parallel:
+// each has a shape of its own). Returns the workers' CPU seconds.
+double Scene::build_stale(const std::vector<std::int32_t>& instances, SceneStats* st) {
+  std::vector<std::int32_t> todo;
+  for (std::int32_t i : instances)
+    if (stale_[i]) {
+      stale_[i] = 0;
+      todo.push_back(i);
+    }
+  if (todo.empty()) return 0.0;
+  std::vector<long> built(todo.size(), 0);
+  const double cpu = parallel_for(todo.size(), options_.threads, [&](std::size_t k) {
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[todo[k]]];
+    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
+    built[k] = static_cast<long>(shape.tree.nodes.size());
+  });
+  for (long b : built) st->nodes_built += b;
+  return cpu;
 }
 
 SolidDistanceResult Scene::query(std::int32_t a, std::int32_t b, double threshold) const {
@@ -308,6 +362,11 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
   timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
   std::sort(cand.begin(), cand.end());
+  {
+    std::vector<std::int32_t> touched;
+    for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
+    timer.add_worker_cpu(build_stale(touched, st));
+  }
   // The remembered pairs, matched to the candidates (both sorted).
   std::vector<const PairMemory*> old(cand.size(), nullptr);
   if (options_.coherence) {
@@ -383,7 +442,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
 // when the predicate stopped early), so every reported bracket is the one a
 // plain solid_distance call gives.
 template <class Stream>
-std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* st) {
   std::vector<ScenePair> best;
   if (k == 0) return best;
   double cutoff = kInf;
@@ -400,6 +459,9 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
     }
     if (batch.empty()) break;
     rerun.assign(batch.size(), 0);
+    std::vector<std::int32_t> touched;
+    for (const ScenePair& p : batch) touched.insert(touched.end(), {p.a, p.b});
+    st->cpu_ms += 1e3 * build_stale(touched, st);
     const double t = cutoff;
     st->cpu_ms += 1e3 * parallel_for(batch.size(), options_.threads, [&](std::size_t i) {
       ScenePair& p = batch[i];
@@ -430,7 +492,7 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
   return best;
 }
 
-std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) {
   const long tested0 = st->pairs_tested;
   std::vector<ScenePair> out;
   {
@@ -444,7 +506,7 @@ std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) const {
   return out;
 }
 
-std::vector<ScenePair> Scene::nearest(std::size_t i, std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::nearest(std::size_t i, std::size_t k, SceneStats* st) {
   const long tested0 = st->pairs_tested;
   std::vector<ScenePair> out;
   {

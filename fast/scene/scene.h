@@ -67,7 +67,9 @@ class Scene {
   Scene(const Case& c, const SceneOptions& options);
 
   std::size_t size() const { return model_.instances.size(); }
-  const PosedSolid& solid(std::size_t i) const { return model_.instances[i]; }
+  // Instance i at the current frame (a deforming shape's tree is built now if
+  // no query has needed it yet; not to be called from several threads at once).
+  const PosedSolid& solid(std::size_t i) const;
   const Aabb& box(std::size_t i) const { return boxes_[i]; }
   const AabbTree& broad_phase() const { return tree_; }
 
@@ -81,9 +83,9 @@ class Scene {
   // call (see SceneOptions), so brackets, not decisions, depend on the history.
   std::vector<ScenePair> within(double d, SceneStats* st);
   // The k pairs of smallest upper bound (full brackets), sorted by (upper, a, b).
-  std::vector<ScenePair> closest(std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> closest(std::size_t k, SceneStats* st);
   // The k instances nearest to instance i (a = i), sorted by (upper, b).
-  std::vector<ScenePair> nearest(std::size_t i, std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> nearest(std::size_t i, std::size_t k, SceneStats* st);
 
  private:
   struct LocalBound {  // a tree node's capsule: segment (r, z) - (r, z) and radius
@@ -101,23 +103,29 @@ class Scene {
   };
   bool settle_from_memory(const PairMemory& m, double d, ScenePair* p) const;
   void fit_bounds(std::size_t shape);
+  void cylinder_bounds(std::size_t shape);
+  double build_stale(const std::vector<std::int32_t>& instances, SceneStats* st);
   Aabb world_box(std::size_t i) const;
   SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
   template <class Stream>
-  std::vector<ScenePair> best_k(Stream& stream, std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> best_k(Stream& stream, std::size_t k, SceneStats* st);
 
   SceneOptions options_;
   std::vector<Pose> pose0_;      // per instance, frame 0
   std::vector<InstanceMotion> motion_;  // per instance
   std::vector<double> time0_;           // per instance: keyframe time at frame 0
   std::vector<SolidDef> solids_;        // the case's, for shapes whose time runs
+  // Per instance: its shape was blended for this frame but its tree not yet
+  // rebuilt (built when a narrow-phase query first needs it; boxes meanwhile
+  // come from a cylinder around the blended control points).
+  mutable std::vector<char> stale_;
   CaseModel model_;
   std::vector<std::vector<LocalBound>> bounds_;  // per shape
   std::vector<Aabb> boxes_;                      // per instance, world
   std::vector<double> reach_;                    // per shape: max |local point| of the solid
   std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
   AabbTree tree_;
-  long unreported_nodes_ = 0;
+  mutable long unreported_nodes_ = 0;
 };
 
 }  // namespace revdist

@@ -277,7 +277,7 @@ TEST(Scene, DeformingShapesMatchBruteForceLazyOrEager) {
       EXPECT_LE(t, 4.0);
       // The blend at the frame's time, in both scenes.
       const Profile want = profile_at(c.solids[0], t);
-      for (const Scene* sc : {&e, &l})
+      for (const Scene* sc : {&e, &l, &t2})
         for (std::size_t k = 0; k < want.pieces.size(); ++k)
           EXPECT_EQ(sc->solid(i).profile->pieces[k].points, want.pieces[k].points) << "instance " << i << " frame " << f;
     }
