@@ -15,7 +15,8 @@ esac
 jobs=${JOBS:-$(nproc)}
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DREVDIST_SANITIZE="$flags" -DREVDIST_BUILD_BENCHMARKS=OFF >/dev/null
 if [ "$mode" = thread ]; then
-  cmake --build "$dir" -j"$jobs" --target solid_distance_threads_test
+  # Every test named *Threads* (queries and scene frames on several threads).
+  cmake --build "$dir" -j"$jobs" --target solid_distance_threads_test scene_test
 else
   cmake --build "$dir" -j"$jobs"
 fi
