@@ -458,7 +458,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   return true;
 }
 
-PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower) {
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower, unsigned outer) {
   Vec3 ca, cb;
   const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
   const double scale = std::max({ea, eb, (ca - cb).norm(), 1e-300});
@@ -483,16 +483,25 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
 
   const Circle3 ea_c[2] = {patch_end_circle(A, 0), patch_end_circle(A, 1)};
   const Circle3 eb_c[2] = {patch_end_circle(B, 0), patch_end_circle(B, 1)};
-  for (const auto& e : ea_c)
-    for (const auto& f : eb_c) {
+  // Junction circles matter only to the sign tests (which need every candidate).
+  if (need_g) outer = kOuterAll;
+  const bool a_out[2] = {(outer & kOuterA0) != 0, (outer & kOuterA1) != 0};
+  const bool b_out[2] = {(outer & kOuterB0) != 0, (outer & kOuterB1) != 0};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      if (!a_out[i] || !b_out[j]) continue;
+      const Circle3& e = ea_c[i];
+      const Circle3& f = eb_c[j];
       if (c.skip(circle3_circle3_lower_bound(e, f))) continue;  // closed form first
       const auto r = circle3_circle3_distance(e, f);
       c.pair(r.point_a, r.point_b);
       c.point_a(r.point_a);
       c.point_b(r.point_b);
     }
-  for (const auto& e : ea_c) boundary_vs_interior(c, e, true);
-  for (const auto& f : eb_c) boundary_vs_interior(c, f, false);
+  for (int i = 0; i < 2; ++i)
+    if (a_out[i]) boundary_vs_interior(c, ea_c[i], true);
+  for (int j = 0; j < 2; ++j)
+    if (b_out[j]) boundary_vs_interior(c, eb_c[j], false);
   interior_vs_interior(c, disk_lb);
   if (need_g) {
     nonsmooth_points(c, true);

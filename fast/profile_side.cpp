@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace revdist {
@@ -67,21 +68,78 @@ int arc_crossings(const Arc2& a, const Vec2& q, const Vec2& d, double tol) {
   return count;
 }
 
+double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double s = l2 > 0 ? std::clamp((q - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (q - (a + s * d)).norm();
+}
+
+// Distance between the ray q + t d (t >= 0, d unit) and segment [a, b]: 0 when
+// they cross, else attained at an end point of one of them.
+double ray_segment_distance(const Vec2& q, const Vec2& d, const Vec2& a, const Vec2& b) {
+  const Vec2 nrm(-d.y(), d.x());
+  const double sa = nrm.dot(a - q), sb = nrm.dot(b - q);
+  if ((sa <= 0) != (sb <= 0) || sa == 0 || sb == 0) {
+    const double t = sa == sb ? d.dot(a - q) : d.dot(a + (sa / (sa - sb)) * (b - a) - q);
+    if (t >= 0) return 0.0;
+  }
+  auto to_ray = [&](const Vec2& p) {
+    const double t = std::max(0.0, d.dot(p - q));
+    return (p - (q + t * d)).norm();
+  };
+  return std::min({to_ray(a), to_ray(b), segment_distance(q, a, b)});
+}
+
+// Calls leaf(fit) for every leaf whose node capsule, widened by `pad`, passes
+// near(node) (a test that holds for a subtree's capsule whenever it holds for
+// any of its leaves' fits); false when the tree is too deep for the stack (the
+// caller then scans every leaf).
+template <class Near, class Leaf>
+bool visit(const BiarcTree& tree, Near near, Leaf leaf) {
+  std::int32_t stack[128];
+  int n = 0;
+  stack[n++] = 0;
+  while (n > 0) {
+    const BiarcNode& node = tree.nodes[stack[--n]];
+    if (!near(node)) continue;
+    if (node.leaf()) {
+      if (node.fit >= 0 && !leaf(tree.fits[node.fit])) return true;
+      continue;
+    }
+    if (n + 2 > 128) return false;
+    stack[n++] = node.child + 1;
+    stack[n++] = node.child;
+  }
+  return true;
+}
+
 }  // namespace
 
 Side profile_side(const BiarcTree& tree, const Vec2& q, double margin) {
+  if (tree.nodes.empty()) return Side::unknown;
+  // Every leaf's biarcs lie within its eps of the profile part its capsule
+  // holds, so within capsule radius + max_error of the capsule's segment: the
+  // tree is descended only where that can reach q or the ray.
+  const double eps = tree.max_error;
+  const BiarcNode& root = tree.nodes[0];
+  const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + root.radius + eps;
+  const bool descend = std::isfinite(eps) && std::isfinite(size);
   double dmin = std::numeric_limits<double>::infinity();
-  double eps = 0.0, size = 0.0;
-  for (const BiarcNode& n : tree.nodes) {
-    if (!n.leaf() || n.fit < 0) continue;
-    const BiarcFit& f = tree.fits[n.fit];
-    eps = std::max(eps, f.eps);
-    for (int i = 0; i < f.arcs; ++i) {
-      dmin = std::min(dmin, arc_distance(f.arc[i], q));
-      size = std::max({size, f.arc[i].start.norm(), f.arc[i].end().norm()});
-    }
+  auto arcs_distance = [&](const BiarcFit& f) {
+    for (int i = 0; i < f.arcs; ++i) dmin = std::min(dmin, arc_distance(f.arc[i], q));
+    return true;
+  };
+  const double reach = margin + eps;  // what must stay clear of q
+  const bool visited = descend && visit(tree, [&](const BiarcNode& n) {
+    return segment_distance(q, n.seg_a, n.seg_b) - n.radius - eps <= reach;
+  }, arcs_distance);
+  if (!visited) {
+    dmin = std::numeric_limits<double>::infinity();
+    for (const BiarcNode& n : tree.nodes)
+      if (n.leaf() && n.fit >= 0) arcs_distance(tree.fits[n.fit]);
   }
-  if (!(dmin > margin + eps)) return Side::unknown;
+  if (!(dmin > reach)) return Side::unknown;
   // Parity of a ray's crossings. The ray goes towards larger r (it never meets
   // the axis segment that closes an axis-to-axis profile) in a direction that
   // passes no arc end point and touches no arc within rounding; shared end
@@ -94,15 +152,25 @@ Side profile_side(const BiarcTree& tree, const Vec2& q, double margin) {
     const Vec2 d(std::cos(angle), std::sin(angle));
     int crossings = 0;
     bool ambiguous = false;
-    for (const BiarcNode& n : tree.nodes) {
-      if (!n.leaf() || n.fit < 0) continue;
-      const BiarcFit& f = tree.fits[n.fit];
+    auto cross = [&](const BiarcFit& f) {
       for (int i = 0; i < f.arcs && !ambiguous; ++i) {
         if (f.arc[i].length <= 0) continue;
         const int k = arc_crossings(f.arc[i], q, d, tol);
         if (k < 0) ambiguous = true; else crossings += k;
       }
-      if (ambiguous) break;
+      return !ambiguous;
+    };
+    // arc_crossings calls an end point within tol of the ray (from tol
+    // behind q) ambiguous: subtrees farther than that from it are skipped.
+    const Vec2 q0 = q - tol * d;
+    bool ok = descend && visit(tree, [&](const BiarcNode& n) {
+      return ray_segment_distance(q0, d, n.seg_a, n.seg_b) - n.radius - eps <= 2 * tol;
+    }, cross);
+    if (!ok) {
+      crossings = 0;
+      ambiguous = false;
+      for (const BiarcNode& n : tree.nodes)
+        if (n.leaf() && n.fit >= 0 && !cross(tree.fits[n.fit])) break;
     }
     if (!ambiguous) return crossings % 2 ? Side::inside : Side::outside;
   }

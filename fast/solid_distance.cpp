@@ -363,12 +363,22 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     double lb_pair = kInf;
     bool all_separated = true;
     const BiarcFit fa = qa.fit, fb = qb.fit;
+    // The arcs of one fit join G1: only the fit's own ends are boundaries
+    // (patch_pair_distance's `outer`), so the fit pair is one problem.
+    auto outer_ends = [](const BiarcFit& f, int i) {
+      int first = -1, last = -1;
+      for (int k = 0; k < f.arcs; ++k)
+        if (f.arc[k].length > 0) last = k, first = first < 0 ? k : first;
+      return (i == first ? 1u : 0u) | (i == last ? 2u : 0u);
+    };
     for (int i = 0; i < fa.arcs; ++i) {
       if (fa.arc[i].length <= 0) continue;
       const Patch P = make_patch(fa.arc[i], pa.R, pa.t);
+      const unsigned outer_a = outer_ends(fa, i);
       for (int j = 0; j < fb.arcs; ++j) {
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
+        const unsigned outer = outer_a | outer_ends(fb, j) << 2;
         // The cheap look first: most pairs end here.
         const PatchQuick quick = patch_pair_quick(P, Q);
         const double disk = quick.lower - fa.eps - fb.eps - round;
@@ -386,7 +396,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round, quick.lower);
+        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round, quick.lower, outer);
         // The true points are within the fits' eps of the patch points: map
         // them (a Newton solve on the input curve) only when they may improve.
         if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
