@@ -174,6 +174,29 @@ struct Solid {
     return s.R * local + s.t;
   }
 
+  // The leaf of the tree next to leaf node n along the profile (dir 0: the one
+  // before, 1: after; leaves are stored depth first, so in profile order, and
+  // a closed profile wraps), when the two fits share that end point to within
+  // `*gap` (set); -1 otherwise.
+  std::int32_t adjacent_leaf(std::int32_t n, int dir, double* gap) const {
+    const auto& nodes = s.tree->nodes;
+    const auto count = static_cast<std::int32_t>(nodes.size());
+    const std::int32_t step = dir ? 1 : -1;
+    std::int32_t m = n;
+    for (std::int32_t k = 1; k < count; ++k) {
+      m = (m + step + count) % count;
+      if (m == n) return -1;
+      if (nodes[m].leaf() && nodes[m].fit >= 0) break;
+    }
+    if (m == n || !nodes[m].leaf() || nodes[m].fit < 0) return -1;
+    const BiarcFit& f = s.tree->fits[nodes[n].fit];
+    const BiarcFit& g = s.tree->fits[nodes[m].fit];
+    const Vec2 here = dir ? f.arc[f.arcs - 1].end() : f.arc[0].start;
+    const Vec2 there = dir ? g.arc[0].start : g.arc[g.arcs - 1].end();
+    *gap = (here - there).norm();
+    return *gap <= 1e-9 * (here.norm() + 1e-300) ? m : -1;
+  }
+
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
   Vec3 some_surface_point() const {
     const Vec2 p = s.profile->pieces.front().start();
@@ -300,6 +323,23 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   std::priority_queue<Entry> heap;
   heap.push({cheap_bound(A, A.parts[0], B, B.parts[0]) - round, 0, 0, false});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
+  // Lower bounds on the distance between the fits of the tree-leaf pairs
+  // compared so far (before the eps are taken off): a leaf's end circle is part
+  // of the neighbouring leaf too, so a neighbour pair's bound also bounds that
+  // circle's sub-problems against the same other fit.
+  struct FitBound {
+    std::int32_t a, b;
+    double lb;
+  };
+  std::vector<FitBound> fit_bounds;
+  auto fit_bound = [&](std::int32_t a, std::int32_t b, double* lb) {
+    for (const FitBound& f : fit_bounds)
+      if (f.a == a && f.b == b) {
+        *lb = f.lb;
+        return true;
+      }
+    return false;
+  };
   bool unresolved = false;
 
   // Pairs are queued with their cheap bound; the tight one is computed when
@@ -363,50 +403,77 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     double lb_pair = kInf;
     bool all_separated = true;
     const BiarcFit fa = qa.fit, fb = qb.fit;
+    const double kernel_cut = cut() + fa.eps + fb.eps + round;
+    // End circles of either fit that the pair of the neighbouring leaf with the
+    // same other fit already puts at kernel_cut or more (less the end points'
+    // rounding gap): their sub-problems are skipped, their bound kept.
+    unsigned covered = 0;  // bit 0/1: A's start/end circle, 2/3: B's
+    double covered_lb = kInf;
+    if (qa.node >= 0 && qb.node >= 0) {
+      for (int dir = 0; dir < 2; ++dir) {
+        double gap, lb;
+        const std::int32_t na = A.adjacent_leaf(qa.node, dir, &gap);
+        if (na >= 0 && fit_bound(na, qb.node, &lb) && lb - gap >= kernel_cut) {
+          covered |= 1u << dir;
+          covered_lb = std::min(covered_lb, lb - gap);
+        }
+        const std::int32_t nb = B.adjacent_leaf(qb.node, dir, &gap);
+        if (nb >= 0 && fit_bound(qa.node, nb, &lb) && lb - gap >= kernel_cut) {
+          covered |= 4u << dir;
+          covered_lb = std::min(covered_lb, lb - gap);
+        }
+      }
+    }
+    double fit_lb = kInf;  // lower bound on the fits' distance, eps not taken off
     // The arcs of one fit join G1: only the fit's own ends are boundaries
-    // (patch_pair_distance's `outer`), so the fit pair is one problem.
-    auto outer_ends = [](const BiarcFit& f, int i) {
+    // (patch_pair_distance's `outer`), so the fit pair is one problem; ends
+    // covered by a neighbour's pair are not boundaries to search either.
+    auto outer_ends = [](const BiarcFit& f, int i, unsigned cover) {
       int first = -1, last = -1;
       for (int k = 0; k < f.arcs; ++k)
         if (f.arc[k].length > 0) last = k, first = first < 0 ? k : first;
-      return (i == first ? 1u : 0u) | (i == last ? 2u : 0u);
+      return (i == first && !(cover & 1u) ? 1u : 0u) | (i == last && !(cover & 2u) ? 2u : 0u);
     };
     for (int i = 0; i < fa.arcs; ++i) {
       if (fa.arc[i].length <= 0) continue;
       const Patch P = make_patch(fa.arc[i], pa.R, pa.t);
-      const unsigned outer_a = outer_ends(fa, i);
+      const unsigned outer_a = outer_ends(fa, i, covered);
       for (int j = 0; j < fb.arcs; ++j) {
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
-        const unsigned outer = outer_a | outer_ends(fb, j) << 2;
+        const unsigned outer = outer_a | outer_ends(fb, j, covered >> 2) << 2;
         // The cheap look first: most pairs end here.
         const PatchQuick quick = patch_pair_quick(P, Q);
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
           ++st.quick_pairs;
           lb_pair = std::min(lb_pair, disk);
+          fit_lb = std::min(fit_lb, quick.lower);
           continue;
         }
         if (quick.exact) {
           ++st.quick_pairs;
           if (quick.lower - fa.eps - fb.eps < ub) offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
           lb_pair = std::min(lb_pair, disk);
+          fit_lb = std::min(fit_lb, quick.lower);
           continue;
         }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round, quick.lower, outer);
+        const PatchPairResult r = patch_pair_distance(P, Q, kernel_cut, quick.lower, outer);
         // The true points are within the fits' eps of the patch points: map
         // them (a Newton solve on the input curve) only when they may improve.
         if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
-          const double d = std::min(r.found ? r.upper : kInf, r.lower_skipped);
+          const double d = std::min({r.found ? r.upper : kInf, r.lower_skipped, covered_lb});
           lb_pair = std::min(lb_pair, std::max(disk, d - fa.eps - fb.eps - round));
+          fit_lb = std::min(fit_lb, std::max(quick.lower, d));
           continue;
         }
         all_separated = false;
         lb_pair = std::min(lb_pair, std::max(disk, 0.0));
+        fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
         // The patches may cross: try to prove that the solids overlap.
         for (const Vec3& x : {r.a_low, r.a_high}) {
           const Vec3 t = A.true_point(fa, x);
@@ -418,6 +485,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         }
       }
     }
+    if (qa.node >= 0 && qb.node >= 0) fit_bounds.push_back({qa.node, qb.node, fit_lb});
     if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;
