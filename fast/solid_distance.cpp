@@ -442,7 +442,24 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
         const unsigned outer = outer_a | outer_ends(fb, j, covered >> 2) << 2;
-        // The cheap look first: most pairs end here.
+        // Closed-form bounds first (the bounding tori, and the tubes of two
+        // toroidal patches): an arc pair they retire needs no iteration.
+        {
+          Vec2 ca, cb;
+          double ra, rb;
+          patch_disk(P, &ca, &ra);
+          patch_disk(Q, &cb, &rb);
+          double lb = circle3_circle3_lower_bound(patch_disk_circle(P, ca), patch_disk_circle(Q, cb)) - ra - rb;
+          if (!P.straight && !Q.straight)
+            lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(P), patch_major_circle(Q)) - P.rho - Q.rho);
+          if (lb - fa.eps - fb.eps - round >= cut()) {
+            ++st.quick_pairs;
+            lb_pair = std::min(lb_pair, lb - fa.eps - fb.eps - round);
+            fit_lb = std::min(fit_lb, lb);
+            continue;
+          }
+        }
+        // The cheap look next: most pairs end here.
         const PatchQuick quick = patch_pair_quick(P, Q);
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
