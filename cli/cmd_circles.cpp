@@ -43,8 +43,8 @@ const char* status_name(ExactStatus s) {
 
 struct FastAnswer {
   Circle3Circle3Result result;
-  int binormals = 0;  // distinct feet on b, -1 for a continuum
-  std::vector<CircleBinormal> lines;  // every binormal line (empty for a continuum)
+  int binormals = 0;  // binormal lines (README), -1 for a continuum
+  std::vector<CircleBinormal> lines;  // those lines (empty for a continuum)
   double slack = 0.0;  // rounding allowance of the double engine
 };
 
@@ -57,9 +57,8 @@ FastAnswer run_fast(const CirclePair& p) {
   const double scale = std::max({p.a.radius, p.b.radius, (p.a.center - p.b.center).norm()});
   f.slack = 64 * std::numeric_limits<double>::epsilon() * scale;
   bool infinite = false;
-  f.binormals = static_cast<int>(circle3_circle3_binormals(p.a, p.b, &infinite).size());
-  if (infinite) f.binormals = -1;
-  else f.lines = circle3_circle3_binormal_lines(p.a, p.b, &infinite);
+  f.lines = circle3_circle3_binormals(p.a, p.b, &infinite);
+  f.binormals = infinite ? -1 : static_cast<int>(f.lines.size());
   return f;
 }
 
@@ -73,7 +72,7 @@ Json lines_json(const std::vector<CircleBinormal>& lines) {
 // The lines under the table, one per row, so the text output shows them all too.
 void print_lines(std::size_t pair, const FastAnswer& f) {
   if (f.binormals < 0) {
-    std::printf("  #%zu: infinitely many binormal lines (a continuum of feet on b)\n", pair);
+    std::printf("  #%zu: infinitely many binormal lines (a continuum)\n", pair);
     return;
   }
   for (std::size_t k = 0; k < f.lines.size(); ++k)

@@ -35,6 +35,7 @@ struct Options {
   bool json = false;
   bool stats_only = false;
   bool no_coherence = false;
+  bool lazy = false;
 };
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
@@ -76,6 +77,7 @@ void run(const Options& o) {
   so.distance.tol = o.tol;
   so.threads = o.threads;
   so.coherence = !o.no_coherence;
+  so.lazy_trees = o.lazy;
   const auto b0 = std::chrono::steady_clock::now();
   Scene scene(c, so);
   const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
@@ -173,6 +175,8 @@ void add_scene_command(CLI::App& app) {
   cmd->add_flag("--stats-only", opts->stats_only, "counters and times only, no pair list");
   cmd->add_flag("--no-coherence", opts->no_coherence,
                 "--within: recompute every pair each frame instead of settling it from its previous frame");
+  cmd->add_flag("--lazy", opts->lazy,
+                "lazy biarc trees for deforming shapes (time_rate): nodes fitted when a query first reaches them");
   cmd->callback([opts] { run(*opts); });
 }
 

@@ -7,6 +7,16 @@
 //    once as the predicate "closer than d?" and once as a full distance
 //    (tol 1e-6); counters: per-pair CPU medians of both and their ratio, over
 //    the pairs whose answer is clear (the full bracket is at least 10% of d away from d).
+//  - BM_DeformableFrame/lazy/predicate/apart: the keyframed `morph` solid
+//    (cases/models) at a new time every frame, blended, its tree rebuilt
+//    (eager, or lazy: down to the spiral level) and queried against a static
+//    copy on a near-contact motion (gap 1 % of the size, or 10 % when apart;
+//    full distance at tol 2 eps, or the predicate "closer than 2 % of the
+//    size?"); counters: per-frame CPU
+//    medians/p90 of blend + rebuild + query and of the query alone, and the
+//    nodes built (tree + query).
+//  - BM_SceneDeforming/lazy: frames of a 20 x 20 grid of deforming `morph`
+//    instances (time_rate), all pairs within 0.1, eager or lazy trees.
 // REVDIST_SEED overrides the motion seed.
 #include <benchmark/benchmark.h>
 
@@ -15,9 +25,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "compare/motion.h"
+#include "compare/random_geometry.h"
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
 #include "fast/scene/parallel.h"
@@ -117,8 +131,123 @@ void BM_Threshold(benchmark::State& state) {
   state.counters["speedup_p10"] = quantile(ratio, 0.1);
 }
 
+// The paper's Figure 8 setting: a static copy of `morph` (time 0) and the
+// deformable one on a near-contact motion (compare/motion.h, gap about 1 % of
+// the size), the deformable solid at a new time every frame.
+struct DeformableMotion {
+  SolidDef def;
+  Profile fixed_profile;
+  BiarcTree fixed_tree;
+  std::vector<double> times;
+  std::vector<MotionFrame> frames;
+  double size = 0.0;
+  DeformableMotion(int n, double clearance) {
+    const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/models/morph.json");
+    def = c.solids[0];
+    fixed_profile = profile_at(def, 0.0);
+    fixed_tree = build_biarc_tree(fixed_profile, 1e-5);
+    size = profile_extent(fixed_profile);
+    // Times spread over every keyframe interval; eager trees for planning the motion only.
+    std::vector<Profile> profiles(n);
+    std::vector<BiarcTree> trees(n);
+    for (int j = 0; j < n; ++j) {
+      times.push_back(static_cast<double>(def.keyframes.size() - 1) * (j + 0.5) / n);
+      profiles[j] = profile_at(def, times[j]);
+      trees[j] = build_biarc_tree(profiles[j], 1e-5);
+    }
+    MotionOptions mo;
+    mo.frames = n;
+    mo.clearance = clearance;
+    mo.seed = seed();
+    const PosedSolid a{&fixed_profile, &fixed_tree, Mat3::Identity(), Vec3::Zero()};
+    frames = near_contact_motion(a, [&](int j) { return PosedSolid{&profiles[j], &trees[j], Mat3::Identity(), Vec3::Zero()}; }, mo);
+  }
+};
+
+void BM_DeformableFrame(benchmark::State& state) {
+  const bool lazy = state.range(0) != 0;
+  const bool predicate = state.range(1) != 0;
+  static const DeformableMotion near(200, 1e-2), apart(200, 1e-1);
+  const DeformableMotion& m = state.range(2) ? apart : near;
+  const PosedSolid base{&m.fixed_profile, &m.fixed_tree, Mat3::Identity(), Vec3::Zero()};
+  DistanceOptions o;
+  o.tol = 2e-5;  // the paper's: twice eps
+  if (predicate) o.threshold = 2e-2 * m.size;  // "closer than 2 % of the size?"
+  Profile profile;
+  BiarcTree tree;
+  std::vector<double> frame_us, query_us, nodes;
+  std::size_t j = 0;
+  for (auto _ : state) {
+    const MotionFrame& f = m.frames[j];
+    const double time = m.times[j];
+    j = (j + 1) % m.frames.size();
+    const double t0 = thread_cpu_seconds();
+    profile = profile_at(m.def, time);
+    rebuild_biarc_tree(profile, 1e-5, tree, nullptr, lazy);
+    const double t1 = thread_cpu_seconds();
+    PosedSolid a = base;
+    a.R = f.R_WA, a.t = f.t_WA;
+    const PosedSolid b{&profile, &tree, f.R_WB, f.t_WB};
+    const SolidDistanceResult r = solid_distance(a, b, o);
+    const double t2 = thread_cpu_seconds();
+    benchmark::DoNotOptimize(r.upper);
+    frame_us.push_back(1e6 * (t2 - t0));
+    query_us.push_back(1e6 * (t2 - t1));
+    nodes.push_back(static_cast<double>(tree.nodes.size() + r.stats.nodes_built));
+  }
+  state.counters["frame_us_median"] = quantile(frame_us, 0.5);
+  state.counters["frame_us_p90"] = quantile(frame_us, 0.9);
+  state.counters["query_us_median"] = quantile(query_us, 0.5);
+  state.counters["nodes_built_median"] = quantile(nodes, 0.5);
+}
+
+// A grid of side x side `morph` instances, each at its own keyframe time
+// running at its own rate (README "Scenes": time_rate) and spinning.
+Case deforming_grid(int side) {
+  std::ifstream in(std::string(REVDIST_SOURCE_DIR) + "/cases/models/morph.json");
+  const nlohmann::json morph = nlohmann::json::parse(in);
+  nlohmann::json doc{{"format", "revdist/1"}, {"solids", {{"morph", morph["solids"]["morph"]}}}};
+  Rng rng(seed());
+  nlohmann::json inst = nlohmann::json::array();
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      inst.push_back({{"name", "m" + std::to_string(i) + "_" + std::to_string(j)},
+                      {"solid", "morph"},
+                      {"time", rng.uniform(0, 4)},
+                      {"translation", {1.4 * i, 1.4 * j, 0}},
+                      {"motion", {{"time_rate", rng.uniform(-0.1, 0.1)}, {"spin", {0, 0, rng.uniform(-0.02, 0.02)}}}}});
+  doc["instances"] = inst;
+  return read_case_text(doc.dump(), "deforming_grid.json");
+}
+
+//  BM_SceneDeforming/lazy: frames of a 20 x 20 deforming grid (every shape
+//  blended and rebuilt each frame), all pairs within 0.1; per-frame CPU.
+void BM_SceneDeforming(benchmark::State& state) {
+  const Case c = deforming_grid(20);
+  SceneOptions o;
+  o.lazy_trees = state.range(0) != 0;
+  Scene scene(c, o);
+  std::vector<double> cpu, built;
+  long frame = 1, found = 0;
+  for (auto _ : state) {
+    SceneStats st;
+    scene.set_frame(static_cast<double>(frame++), &st);
+    const std::vector<ScenePair> pairs = scene.within(0.1, &st);
+    benchmark::DoNotOptimize(pairs.data());
+    cpu.push_back(st.cpu_ms);
+    built.push_back(static_cast<double>(st.nodes_built));
+    found += static_cast<long>(pairs.size());
+  }
+  state.counters["cpu_ms_median"] = quantile(cpu, 0.5);
+  state.counters["cpu_ms_p90"] = quantile(cpu, 0.9);
+  state.counters["nodes_built_median"] = quantile(built, 0.5);
+  state.counters["pairs_within"] = static_cast<double>(found) / static_cast<double>(frame - 1);
+}
+
 }  // namespace
 
+BENCHMARK(BM_SceneDeforming)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(30);
+BENCHMARK(BM_DeformableFrame)->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond)->Iterations(2000);
 BENCHMARK(BM_SceneWithin)->Args({1000, 1})->Args({1000, 2})->Args({10000, 1})->Args({10000, 2})
     ->Unit(benchmark::kMillisecond)->Iterations(8);
 BENCHMARK(BM_Threshold)->Arg(10)->Arg(20)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -296,8 +296,8 @@ std::string read_string(const Json& j, const JsonWhere& where) {
 
 // An instance's motion over scene frames (core/motion.h).
 InstanceMotion read_motion(const Json& j, const JsonWhere& w) {
-  if (!j.is_object()) w.fail("expected an object {velocity?, acceleration?, spin?, wave?}");
-  reject_unknown_members(j, {"velocity", "acceleration", "spin", "wave"}, w);
+  if (!j.is_object()) w.fail("expected an object {velocity?, acceleration?, spin?, wave?, time_rate?}");
+  reject_unknown_members(j, {"velocity", "acceleration", "spin", "wave", "time_rate"}, w);
   InstanceMotion m;
   if (j.contains("velocity")) m.velocity = read_vec3(j["velocity"], sub(w, "velocity"));
   if (j.contains("acceleration")) m.acceleration = read_vec3(j["acceleration"], sub(w, "acceleration"));
@@ -312,6 +312,7 @@ InstanceMotion read_motion(const Json& j, const JsonWhere& w) {
     if (!(m.wave_period > 0)) ww.fail("period " + fmt(m.wave_period) + " <= 0 (frames)");
     if (wv.contains("phase")) m.wave_phase = read_number(wv["phase"], sub(ww, "phase"));
   }
+  if (j.contains("time_rate")) m.time_rate = read_number(j["time_rate"], sub(w, "time_rate"));
   return m;
 }
 
@@ -354,6 +355,8 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
     if (inst.time < 0 || inst.time > last)
       w.fail("time " + fmt(inst.time) + " outside [0, " + fmt(last) + "] for solid " + in_quotes(s.name));
   }
+  if (inst.motion.time_rate != 0 && !s.deformable())
+    sub(sub(w, "motion"), "time_rate").fail("static solid " + in_quotes(s.name) + " has no keyframes to run through");
   return inst;
 }
 

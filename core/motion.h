@@ -1,6 +1,7 @@
 // Motion of an instance over the frames of a scene (`revdist scene --frames`):
 // a pose as a function of the frame number f = 0, 1, 2, ... (README, "Scenes").
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "core/pose.h"
@@ -12,6 +13,8 @@ namespace revdist {
 //                    + wave_amplitude sin(2 pi f / wave_period + wave_phase)
 //   rotation(f)    = exp(spin f) * rotation    (spin: a world axis times radians per frame,
 //                                               about the instance's own origin)
+//   time(f)        = time + time_rate f, reflected at 0 and K - 1 (keyframed solids:
+//                    the shape runs back and forth through its keyframes)
 // Frame 0 is the pose as given, so readers that ignore motion see frame 0.
 struct InstanceMotion {
   Vec3 velocity = Vec3::Zero();
@@ -20,11 +23,19 @@ struct InstanceMotion {
   Vec3 wave_amplitude = Vec3::Zero();
   double wave_period = 1.0;  // frames, > 0
   double wave_phase = 0.0;   // radians
+  double time_rate = 0.0;    // keyframe time per frame (keyframed solids only)
 
   bool moving() const {
     return !velocity.isZero(0) || !acceleration.isZero(0) || !spin.isZero(0) || !wave_amplitude.isZero(0);
   }
 };
+
+// The keyframe time at frame f of an instance at time t0 of a solid with keyframes 0..last.
+inline double time_at_frame(double t0, const InstanceMotion& m, double f, double last) {
+  if (m.time_rate == 0 || f == 0 || !(last > 0)) return t0;
+  const double t = std::fmod(std::abs(t0 + m.time_rate * f), 2 * last);  // period 2 last, even
+  return std::min(t <= last ? t : 2 * last - t, last);
+}
 
 // The pose at frame f. The quaternion stays a quaternion (the exact engine's
 // rational rotation M(q)/|q|^2 applies to every frame's pose as well).

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <optional>
 
 #include "exact/circle_exact_internal.h"
@@ -236,7 +237,9 @@ ExactCircleResult point_circle(const Circle3& a, const Circle3& b, double target
   r.point_b = b.center;
   const mpq_class rho2num = f.rho2num.c[0][0], hnum = f.hnum.c[0][0];
   const bool on_axis = sgn(rho2num) == 0;
-  r.binormals = on_axis ? -1 : 1;
+  // Lines: to the near and the far point of a, only the far one when b lies on
+  // a (the near one has length 0), a cone of them from a's axis.
+  r.binormals = on_axis ? -1 : 2;
   {
     const mpfr_prec_t p = 128;
     const Iv zero(p, mpq_class(0));
@@ -244,6 +247,7 @@ ExactCircleResult point_circle(const Circle3& a, const Circle3& b, double target
   }
   if (sgn(hnum) == 0 && rho2num == f.Ra2 * f.n2) {
     set_contact(r, b.center);
+    r.binormals = 1;
     return r;
   }
   if (on_axis) r.status = ExactStatus::infinitely_many;
@@ -462,10 +466,49 @@ struct CandidateSet {
   bool h_zero = false;
 };
 
+// The binormal lines that leave the point p of b where G = 0 (README,
+// `circles`: the same count as fast/). On a's axis: those in the plane normal
+// to b at p, two, or one where that plane is tangent to a (axis_test = 0). At a
+// contact point only the far line, if the far branch is critical there. Else
+// G = 0 says a branch is critical: ψ± = L ∓ R_a·Qp/(|n|²ρ), so the near line
+// has sign L = sign Qp, the far one the opposite, both when L = Qp = 0. A near
+// line shorter than `contact` is a contact point, as in fast/ (the given
+// doubles often miss a contact by an ulp or so).
+int lines_at(const PairFrame& f, const PointB& p, bool on_axis, bool touching, int xshift, double contact) {
+  if (on_axis) {
+    const int s = sign_on_b(f, f.axis_test, p);
+    return s < 0 ? 2 : (s == 0 ? 1 : 0);
+  }
+  if (touching && sign_filtered(f, f.hnum, p, xshift) == 0 && sign_filtered(f, f.sphere, p, xshift) == 0)
+    return sign_filtered(f, f.L, p, xshift) == 0 ? 1 : 0;
+  const int sl = sign_filtered(f, f.L, p, xshift), sq = sign_filtered(f, f.Qp, p, xshift);
+  if (sl == 0 && sq == 0) return 2;
+  if (sl == sq) {
+    const Iv X = x_enclosure(p.x, 128 + xshift);
+    const Iv d = dist_enclosure(f, delta_of(f, X, y_of(f, X, p.sigma)));
+    Fr hi(d.prec());
+    mpfi_get_right(hi.get(), d.get());
+    if (mpfr_cmp_d(hi.get(), contact) <= 0) return 0;
+  }
+  return 1;
+}
+
+// fast/'s contact length: 64ε times the power of two just above
+// max(radii, max |C_b - C_a| component), for one definition of a line.
+double contact_length(const PairFrame& f) {
+  double s = std::max(std::abs(f.Ra.get_d()), std::abs(f.rb.get_d()));
+  for (int i = 0; i < 3; ++i) s = std::max(s, std::abs(f.D[i].get_d()));
+  if (!(s > 0)) return 0;
+  int e;
+  std::frexp(s, &e);
+  return 64 * std::numeric_limits<double>::epsilon() * std::ldexp(1.0, e);
+}
+
 CandidateSet find_candidates(const PairFrame& f, bool touching) {
   static const AK ak;
   PROF(find_candidates);
   const int xshift = xshift_for(f);
+  const double contact = contact_length(f);
   CandidateSet cs;
   const std::vector<PointB> crossings = axis_crossings(
       f, [&](const BiPoly& p, const PointB& pt) { return sign_filtered(f, p, pt, xshift); });
@@ -528,16 +571,7 @@ CandidateSet find_candidates(const PairFrame& f, bool touching) {
         int sr = iv_sign(R64.eval(X64, y_of(f, X64, sigma)));
         const bool on_axis = (sr != 0 ? sr : sign_filtered(f, f.rho2num, p, xshift)) == 0;
         add(p, on_axis);
-        // Binormal feet: an axis point carries one only if some Q of a sees P
-        // perpendicularly to b; a contact point only through the far branch.
-        if (on_axis) {
-          if (sign_on_b(f, f.axis_test, p) <= 0) ++cs.binormals;
-        } else if (touching && sign_filtered(f, f.hnum, p, xshift) == 0 &&
-                   sign_filtered(f, f.sphere, p, xshift) == 0) {
-          if (sign_filtered(f, f.L, p, xshift) == 0) ++cs.binormals;
-        } else {
-          ++cs.binormals;
-        }
+        cs.binormals += lines_at(f, p, on_axis, touching, xshift, contact);
       }
     }
     return cs;
@@ -683,10 +717,7 @@ ExactCircleResult compute(const Circle3& a, const Circle3& b, const ExactOptions
   if (b.radius == 0) return point_circle(a, b, target, max_bits);
   if (a.radius == 0) {
     ExactCircleResult r = point_circle(b, a, target, max_bits);
-    swap_sides(r);
-    // Feet on b seen from the point a: near and far point, only the far one
-    // when a lies on b, all of b when a is on b's axis.
-    if (r.binormals == 1) r.binormals = r.contact ? 1 : 2;
+    swap_sides(r);  // the same lines seen from the other side
     return r;
   }
 

@@ -26,14 +26,15 @@ struct ExactCircleResult {
   bool contact = false;   // proven exactly: the circles share a point (then lower = upper = 0)
   Vec3 point_a = Vec3::Zero();  // a closest pair, rounded to double
   Vec3 point_b = Vec3::Zero();
-  // Binormal feet on b: the number of distinct points P of circle b at which
-  // some binormal line meets b, i.e. P has a point Q != P of a such that
-  // (P, Q) is a critical pair of |P - Q|^2 (near or far branch). -1 when there
-  // are infinitely many (coaxial circles, Villarceau and meridian pairs, a
-  // point on the axis of a). When b is a point: 1 (0 if it coincides with a's
-  // point); when a is a point: 2 (near and far point of b; 1 if a lies on b).
-  // Exact, like the rest: roots of the binormal polynomial with the sign of y
-  // decided on algebraic numbers.
+  // Binormal lines: segments PQ, P on a, Q on b, normal to both (to a point
+  // circle: any direction), counted as fast/ counts them (README, `circles`): a
+  // near and a far line at one point of b are two; from a point of b on a's
+  // axis, the lines in the plane normal to b there; a near line shorter than
+  // fast/'s contact length (64ε·2^e, 2^e just above max(radii, max |C_b - C_a|
+  // component)) is a contact point, not a line. -1 when they form a continuum
+  // (coaxial circles, Villarceau and meridian pairs, a point on the other's
+  // axis). Exact, like the rest: the roots of the binormal polynomial of the
+  // given doubles, the branch decided by exact signs.
   int binormals = 0;
 };
 

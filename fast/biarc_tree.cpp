@@ -19,35 +19,53 @@ namespace {
 // enough to stop a runaway split of a span whose hypotheses cannot hold.
 constexpr int kMaxDepth = 40;
 
+// Builds nodes into `tree`. Node, fit and pending indices are global: those
+// below the base counts belong to a shared tree that is never written (a lazy
+// tree's own nodes, when a query's view expands them), the rest to `tree`.
 struct Builder {
   const Profile& profile;
   double eps;
   double slack;  // rounding allowance added to every proven bound
   double max_exact_length;  // exact lines and arcs are split below this length
   BiarcTree& tree;
+  bool lazy = false;  // stop below a proven inner node: mark it pending instead
+  std::int32_t base_nodes = 0, base_fits = 0, base_pending = 0;
   BuildStats st;
+
+  BiarcNode& node_at(std::int32_t i) { return tree.nodes[i - base_nodes]; }
 
   std::int32_t alloc_pair() {
     const auto i = static_cast<std::int32_t>(tree.nodes.size());
     tree.nodes.resize(tree.nodes.size() + 2);
-    return i;
+    return base_nodes + i;
   }
 
   void set_capsule(std::int32_t node, const Capsule& c) {
-    BiarcNode& n = tree.nodes[node];
+    BiarcNode& n = node_at(node);
     n.seg_a = c.a;
     n.seg_b = c.b;
     n.radius = c.radius;
   }
 
-  Capsule capsule_of(std::int32_t node) const {
-    const BiarcNode& n = tree.nodes[node];
+  Capsule capsule_of(std::int32_t node) {
+    const BiarcNode& n = node_at(node);
     return Capsule{n.seg_a, n.seg_b, n.radius};
   }
 
   std::int32_t add_fit(const BiarcFit& f) {
     tree.fits.push_back(f);
-    return static_cast<std::int32_t>(tree.fits.size() - 1);
+    return base_fits + static_cast<std::int32_t>(tree.fits.size() - 1);
+  }
+
+  // Records the children of `node`; a shared tree's node is not written (the view records them).
+  void link(std::int32_t node, std::int32_t c) {
+    if (node >= base_nodes) node_at(node).child = c;
+  }
+
+  // Lazy: the node's children are built when a query first asks for them.
+  void set_pending(std::int32_t node, const SpiralSpan& s) {
+    tree.pending.push_back(s);
+    node_at(node).child = -2 - (base_pending + static_cast<std::int32_t>(tree.pending.size() - 1));
   }
 
   void note_leaf(const BiarcFit& f) {
@@ -72,26 +90,35 @@ struct Builder {
     }
     const double um = 0.5 * (s.u0 + s.u1);
     if (length > max_exact_length && s.u0 < um && um < s.u1) {
-      SpiralSpan left = s, right = s;
+      // The node keeps the whole exact arc as its fit (bounds for the traversal).
+      node_at(node).fit = add_fit(exact_fit(s, length));
+      set_capsule(node, lens_capsule_of(s.ends));
+      if (lazy) set_pending(node, s);
+      else expand_exact(node, s);
+      return;
+    }
+    const BiarcFit f = exact_fit(s, length);
+    set_capsule(node, lens_capsule_of(s.ends));
+    node_at(node).fit = add_fit(f);
+    note_leaf(f);
+  }
+
+  // The two halves of an exact span (build_exact's split); returns the first child.
+  std::int32_t expand_exact(std::int32_t node, const SpiralSpan& s) {
+    const Piece& piece = profile.pieces[s.piece];
+    const double um = 0.5 * (s.u0 + s.u1);
+    SpiralSpan left = s, right = s;
       left.u1 = um;
       left.ends.p1 = piece_tangent(piece, um, -1, &left.ends.t1, &left.ends.k1);
       right.u0 = um;
       right.ends.p0 = left.ends.p1;
       right.ends.t0 = left.ends.t1;
       right.ends.k0 = left.ends.k1;
-      const std::int32_t c = alloc_pair();
-      tree.nodes[node].child = c;
-      build_exact(c, left);
-      build_exact(c + 1, right);
-      // The node keeps the whole exact arc as its fit (bounds for the traversal).
-      tree.nodes[node].fit = add_fit(exact_fit(s, length));
-      set_capsule(node, lens_capsule_of(s.ends));
-      return;
-    }
-    const BiarcFit f = exact_fit(s, length);
-    set_capsule(node, lens_capsule_of(s.ends));
-    tree.nodes[node].fit = add_fit(f);
-    note_leaf(f);
+    const std::int32_t c = alloc_pair();
+    link(node, c);
+    build_exact(c, left);
+    build_exact(c + 1, right);
+    return c;
   }
 
   // The one exact Arc2 of an input line or arc span.
@@ -126,12 +153,12 @@ struct Builder {
     Capsule cap;
     BiarcFit f = fit_curve_span(piece, piece_index, u0, u1, e, left.p1, slack, &cap);
     f.depth = static_cast<std::uint8_t>(depth);
-    tree.nodes[node].fit = add_fit(f);
+    node_at(node).fit = add_fit(f);
     const bool proven = f.eps < std::numeric_limits<double>::infinity();
 
     const bool leaf = (proven && f.eps <= eps) || depth >= kMaxDepth || !(u0 < um && um < u1);
     if (leaf) {
-      tree.nodes[node].child = -1;
+      node_at(node).child = -1;
       if (proven) {
         set_capsule(node, cap);
         if (f.eps > eps) ++st.depth_limited;
@@ -143,15 +170,45 @@ struct Builder {
       note_leaf(f);
       return;
     }
-    const std::int32_t c = alloc_pair();
-    tree.nodes[node].child = c;
-    build_curve(c, piece, piece_index, u0, um, left, depth + 1);
-    build_curve(c + 1, piece, piece_index, um, u1, right, depth + 1);
+    if (proven && lazy) {
+      set_capsule(node, cap);
+      SpiralSpan span;
+      span.piece = piece_index;
+      span.u0 = u0;
+      span.u1 = u1;
+      span.ends = e;
+      set_pending(node, span);
+      return;
+    }
+    // Unproven inner nodes are built eagerly even in a lazy tree: their capsule is their children's union.
+    const std::int32_t c = expand_curve(node, piece, piece_index, u0, u1, left, right, depth);
     if (proven) {
       set_capsule(node, cap);
     } else {
       set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
     }
+  }
+
+  // The two halves of a curve span (ends `left`, `right`: split_span's); returns the first child.
+  std::int32_t expand_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
+                            const SpanEnds& left, const SpanEnds& right, int depth) {
+    const double um = 0.5 * (u0 + u1);
+    const std::int32_t c = alloc_pair();
+    link(node, c);
+    build_curve(c, piece, piece_index, u0, um, left, depth + 1);
+    build_curve(c + 1, piece, piece_index, um, u1, right, depth + 1);
+    return c;
+  }
+
+  // Builds the children of pending node `node` (span s, the fit's depth).
+  std::int32_t expand(std::int32_t node, const SpiralSpan& s, int depth) {
+    if (s.kind == SpanKind::curve) {
+      const Piece& piece = profile.pieces[s.piece];
+      SpanEnds left, right;
+      split_span(piece, s.u0, s.u1, s.ends, &left, &right);
+      return expand_curve(node, piece, s.piece, s.u0, s.u1, left, right, depth);
+    }
+    return expand_exact(node, s);
   }
 
   void build_spiral(std::int32_t node, const SpiralSpan& s) {
@@ -166,7 +223,7 @@ struct Builder {
       f.arcs = 1;
       f.arc[0] = Arc2{s.ends.p0, (s.ends.p1 - s.ends.p0).normalized(), 0.0, (s.ends.p1 - s.ends.p0).norm()};
       f.arc[1] = Arc2{s.ends.p1, f.arc[0].tangent, 0.0, 0.0};
-      tree.nodes[node].fit = add_fit(f);
+      node_at(node).fit = add_fit(f);
       set_capsule(node, Capsule{s.ends.p0, s.ends.p1, std::numeric_limits<double>::infinity()});
       ++st.unproven;
       note_leaf(f);
@@ -187,8 +244,8 @@ struct Builder {
     }
     const std::size_t mid = lo + (hi - lo) / 2;
     const std::int32_t c = alloc_pair();
-    tree.nodes[node].child = c;
-    tree.nodes[node].fit = -1;
+    node_at(node).child = c;
+    node_at(node).fit = -1;
     build_upper(c, lo, mid);
     build_upper(c + 1, mid, hi);
     set_capsule(node, capsule_union(capsule_of(c), capsule_of(c + 1)));
@@ -223,9 +280,11 @@ BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0,
   return f;
 }
 
-void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats) {
+void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats, bool lazy) {
   tree.nodes.clear();
   tree.fits.clear();
+  tree.pending.clear();
+  tree.lazy = lazy;
   tree.eps = eps;
   split_into_spirals(profile, tree.spirals);
 
@@ -244,7 +303,9 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
       lo_z = std::min(lo_z, q.y()); hi_z = std::max(hi_z, q.y());
     }
   const double extent = profile.pieces.empty() ? 0.0 : std::hypot(hi_r - lo_r, hi_z - lo_z);
-  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent / 16, tree, BuildStats{}};
+  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent / 16, tree};
+  b.lazy = lazy;
+  tree.exact_length = b.max_exact_length;
   if (!tree.spirals.empty()) {
     tree.nodes.resize(1);
     b.build_upper(0, 0, tree.spirals.size());
@@ -260,10 +321,36 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
   }
 }
 
-BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats) {
+BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats, bool lazy) {
   BiarcTree tree;
-  rebuild_biarc_tree(profile, eps, tree, stats);
+  rebuild_biarc_tree(profile, eps, tree, stats, lazy);
   return tree;
+}
+
+BiarcTreeView::BiarcTreeView(const BiarcTree& tree, const Profile& profile)
+    : tree_(tree),
+      profile_(profile),
+      base_nodes_(static_cast<std::int32_t>(tree.nodes.size())),
+      base_fits_(static_cast<std::int32_t>(tree.fits.size())),
+      base_pending_(static_cast<std::int32_t>(tree.pending.size())) {}
+
+std::int32_t BiarcTreeView::expand(std::int32_t i) {
+  const std::int32_t p = -2 - node(i).child;
+  if (p < base_pending_) {
+    if (expanded_.empty()) expanded_.assign(static_cast<std::size_t>(base_pending_), -1);
+    if (expanded_[p] >= 0) return expanded_[p];
+  }
+  // Copies: the builder appends to ext_ (its pending spans and fits too).
+  const SpiralSpan span = p < base_pending_ ? tree_.pending[p] : ext_.pending[p - base_pending_];
+  const int depth = fit(node(i).fit).depth;
+  Builder b{profile_, tree_.eps, tree_.slack, tree_.exact_length, ext_};
+  b.lazy = true;
+  b.base_nodes = base_nodes_;
+  b.base_fits = base_fits_;
+  b.base_pending = base_pending_;
+  const std::int32_t c = b.expand(i, span, depth);
+  if (p < base_pending_) expanded_[p] = c;
+  return c;
 }
 
 }  // namespace revdist

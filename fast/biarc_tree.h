@@ -16,6 +16,13 @@
 // in profile order) and rebuilding into an existing tree reuses its capacity:
 // a deformable solid rebuilt at a new time allocates nothing once warmed up
 // (core/curve_eval's evaluator aside).
+//
+// Lazy trees (issue 8) stop at every proven inner node at or below the spiral
+// level and keep its span instead ("pending"); a query reads the tree through
+// a BiarcTreeView, which builds a pending node's children, with the same code
+// and so the same numbers as the eager build, when the traversal first splits
+// it. Parts of a profile no query reaches are never fitted: a deformable solid
+// at a new time costs what its queries touch, not a whole rebuild.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -31,9 +38,12 @@ namespace revdist {
 struct BiarcNode {
   Vec2 seg_a = Vec2::Zero(), seg_b = Vec2::Zero();  // the best-fit segment (a cone when rotated)
   double radius = 0.0;  // proven: the node's profile part is within `radius` of the segment
-  std::int32_t child = -1;  // first child; the second is child + 1; -1 for a leaf
+  // First child; the second is child + 1. -1 for a leaf; <= -2 for a pending
+  // node of a lazy tree (children not built; its span is pending[-2 - child]).
+  std::int32_t child = -1;
   std::int32_t fit = -1;    // index into BiarcTree::fits; -1 above the spiral level
-  bool leaf() const { return child < 0; }
+  bool leaf() const { return child == -1; }
+  bool pending() const { return child < -1; }
 };
 
 // The biarc of one node at or below the spiral level, with what an audit needs
@@ -55,6 +65,10 @@ struct BiarcTree {
   double eps = 0.0;        // requested bound
   double max_error = 0.0;  // max eps over the leaves (claimed, proven by the lens bound)
   double slack = 0.0;      // rounding allowance added to every proven bound (64 ulp of the profile's size)
+  double exact_length = 0.0;  // exact lines and arcs are split down to this length
+  // Lazy trees: the spans of the pending nodes.
+  bool lazy = false;
+  std::vector<SpiralSpan> pending;
 
   // Bytes of the tree proper (nodes and fits); the spiral list is build input.
   std::size_t bytes() const { return nodes.size() * sizeof(BiarcNode) + fits.size() * sizeof(BiarcFit); }
@@ -82,10 +96,39 @@ void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, Spa
 BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0, double u1, const SpanEnds& e,
                         const Vec2& mid, double slack, Capsule* capsule);
 
-// Builds the tree of `profile` with requested error bound eps > 0.
-BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats = nullptr);
+// Builds the tree of `profile` with requested error bound eps > 0; lazy: down
+// to the spiral level (and below only where a node is unproven), the rest on demand.
+BiarcTree build_biarc_tree(const Profile& profile, double eps, BuildStats* stats = nullptr, bool lazy = false);
 
 // The same, into `tree`, reusing its storage (the deformable hot path).
-void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats = nullptr);
+void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, BuildStats* stats = nullptr,
+                        bool lazy = false);
+
+// One query's read access to a tree: a lazy tree's pending nodes are expanded
+// into this view when first split (per query: the shared tree is never
+// written, so queries on any number of threads need no lock, and a node two
+// queries both reach is built by each). An eager tree is read as it is.
+// Indices are global: below the tree's own counts they are the tree's.
+class BiarcTreeView {
+ public:
+  BiarcTreeView(const BiarcTree& tree, const Profile& profile);
+  const BiarcNode& node(std::int32_t i) const { return i < base_nodes_ ? tree_.nodes[i] : ext_.nodes[i - base_nodes_]; }
+  const BiarcFit& fit(std::int32_t i) const { return i < base_fits_ ? tree_.fits[i] : ext_.fits[i - base_fits_]; }
+  // The first child of inner node i (the second is + 1), built now when pending.
+  // References from node() and fit() do not survive it.
+  std::int32_t children(std::int32_t i) {
+    const std::int32_t c = node(i).child;
+    return c >= 0 ? c : expand(i);
+  }
+  long nodes_built() const { return static_cast<long>(ext_.nodes.size()); }
+
+ private:
+  std::int32_t expand(std::int32_t i);
+  const BiarcTree& tree_;
+  const Profile& profile_;
+  std::int32_t base_nodes_, base_fits_, base_pending_;
+  BiarcTree ext_;                       // nodes, fits and pending spans built by this view
+  std::vector<std::int32_t> expanded_;  // per pending node of the tree: its first child here, or -1
+};
 
 }  // namespace revdist

@@ -7,7 +7,7 @@
 
 namespace revdist {
 
-CaseModel build_case_model(const Case& c, double eps) {
+CaseModel build_case_model(const Case& c, double eps, bool lazy) {
   CaseModel m;
   for (const Instance& inst : c.instances) {
     const double time = c.solids[inst.solid].deformable() ? inst.time : 0.0;
@@ -19,7 +19,7 @@ CaseModel build_case_model(const Case& c, double eps) {
       s->time = time;
       s->profile = profile_at(c.solids[inst.solid], time);
       const auto t0 = std::chrono::steady_clock::now();
-      rebuild_biarc_tree(s->profile, eps, s->tree, &s->stats);
+      rebuild_biarc_tree(s->profile, eps, s->tree, &s->stats, lazy);
       s->build_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
       m.shapes.push_back(std::move(s));
     }

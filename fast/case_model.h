@@ -25,7 +25,7 @@ struct CaseModel {
   std::vector<PosedSolid> instances;   // per instance
 };
 
-// Builds the trees of every instance of the case at eps.
-CaseModel build_case_model(const Case& c, double eps);
+// Builds the trees of every instance of the case at eps (lazy: see fast/biarc_tree.h).
+CaseModel build_case_model(const Case& c, double eps, bool lazy = false);
 
 }  // namespace revdist

@@ -85,10 +85,11 @@ bool polish_branch(const PairCoeffs& k, double sigma, double* th) {
 
 // Points where b crosses a's axis: minima of ρ^2 (roots of Qp, a quartic in t)
 // where ρ vanishes to rounding.
-int axis_crossings(const PairCoeffs& k, double* th_out) {
+int axis_crossings(const PairCoeffs& k, double* th_out, double* rho_min) {
   double th[16];
   const int n = rho2_critical_angles(k, th);
   int m = 0;
+  *rho_min = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
     // Newton on Qp = (ρ^2)'/2 polishes the minimum of ρ^2.
     double t = th[i];
@@ -100,8 +101,10 @@ int axis_crossings(const PairCoeffs& k, double* th_out) {
       t -= Qp / Qp1;
     }
     const Pt p = at(k, t);
+    const double rho = std::sqrt(p.X * p.X + p.Y * p.Y);
+    *rho_min = std::min(*rho_min, rho);
     // ρ at scale ~1 after frame rounding: a few ε; 64ε with margin.
-    if (std::sqrt(p.X * p.X + p.Y * p.Y) <= 64 * kEps) th_out[m++] = t;
+    if (rho <= 64 * kEps) th_out[m++] = t;
   }
   return m;
 }
@@ -163,14 +166,14 @@ int near_windows(const CircleFrame& a, const CircleFrame& b, double max_len, con
   return nw;
 }
 
-// All binormal lines of a and b, or (max_len finite) at least every one
-// shorter than max_len: roots are then sought only in b's near windows, and
-// *dropped_lb bounds the length of any line left out from below.
-std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infinite,
-                            double max_len = std::numeric_limits<double>::infinity(),
-                            double* dropped_lb = nullptr, const BinormalArcTest* test = nullptr) {
+// The binormal lines of a and b found on one parameterisation (θ on b; with
+// max_len finite only in b's near windows, *dropped_lb bounding what is left
+// out). *ill is set when its polynomial cannot be trusted to show every root.
+std::vector<Line> lines_one_order(const Circle3& a_in, const Circle3& b_in, bool* infinite, double max_len,
+                                  double* dropped_lb, const BinormalArcTest* test, bool* ill) {
   if (dropped_lb) *dropped_lb = std::numeric_limits<double>::infinity();
   *infinite = false;
+  *ill = false;
   std::vector<Line> out;
   const double sigma = circle_pair_sigma(a_in, b_in);
   const CircleFrame a = make_frame(a_in), b = make_frame(b_in);
@@ -211,8 +214,17 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     }
     return out;
   }
-  // The binormal polynomial Φ in t, with a bound on its terms.
-  auto phi_poly = [](const PairCoeffs& r, double* phi, double* mag) {
+  // The binormal polynomial Φ in t, with a bound on its terms (*mag) and on the
+  // rounding error of its coefficients (*err, summed over them).
+  // Why *err: Φ = ρ²L² - R²Qp² cancels to far below its terms when one branch
+  // is nearly degenerate for every point of b (b's centre nearly on a with b
+  // in a meridian plane of a, or the swapped order: the foot on a barely moves),
+  // and near a mirror symmetry its roots are double; such a touching root is
+  // lost when it is judged against the size of the cancelled coefficients.
+  // Each coefficient is a sum of products of the t-form coefficients with ~16
+  // roundings on the way; over all coefficients the terms sum to the product of
+  // the factors' 1-norms.
+  auto phi_poly = [](const PairCoeffs& r, double* phi, double* mag, double* err) {
     double X[3], Y[3], Xd[3], Yd[3], L[3];
     trig1_to_t(r.x0, r.x1, r.x2, X);
     trig1_to_t(r.y0, r.y1, r.y2, Y);
@@ -235,17 +247,34 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
       m += std::abs(A[i]) + r.R * r.R * std::abs(B[i]);
     }
     *mag = m;
+    auto n1 = [](const double* p) { return std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]); };
+    const double nX = n1(X), nY = n1(Y), nL = n1(L);
+    const double terms = (nX * nX + nY * nY) * nL * nL + r.R * r.R * std::pow(nX * n1(Xd) + nY * n1(Yd), 2);
+    *err = 32 * kEps * terms;
   };
-  double phi[9], mag;
-  phi_poly(k, phi, &mag);
+  double phi[9], mag, err;
+  phi_poly(k, phi, &mag, &err);
   double big = 0;
   for (double c : phi) big = std::max(big, std::abs(c));
   if (big <= 256 * kEps * mag) {
     // Named: Φ ≡ 0 (coaxial, Villarceau, meridian): every point of b is critical
-    // for the near or the far branch.
+    // for the near or the far branch. The other branch may still have isolated
+    // lines (a meridian circle's lines to the far foot): the other order finds them.
     *infinite = true;
+    *ill = true;
     return out;
   }
+  double sum_phi = 0;
+  for (double c : phi) sum_phi += std::abs(c);
+  // Φ = ρ²·ψ₊·ψ₋ (ρ: distance from b's point to a's axis, ψ±: the branches'
+  // derivatives). A branch that nearly vanishes along all of b (b nearly a
+  // meridian circle of a, or a's foot nearly fixed) shrinks every coefficient
+  // far below its terms; b passing near a's axis shrinks Φ by ρ² near the
+  // roots there. Either way a root of the other branch can sink into the
+  // rounding. kIll: a thousandth, where the worst misses measured began
+  // (tilts of 1e-3 from a meridian plane, axis passes of 1e-2 of the scale).
+  constexpr double kIll = 1e-3;
+  if (sum_phi < kIll * err / (32 * kEps)) *ill = true;
   constexpr int kCap = 640;  // 16 windows at most, 36 entries each (two charts, wrapped)
   double th[kCap];
   int n = -1;
@@ -255,12 +284,12 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
     *dropped_lb = dlb;
     n = 0;
     for (int w = 0; w < nw && n >= 0; ++w) {
-      const int m = trig_poly_roots_window(phi, 8, win[2 * w], win[2 * w + 1], th + n, kCap - n);
+      const int m = trig_poly_roots_window(phi, 8, win[2 * w], win[2 * w + 1], th + n, kCap - n, err);
       n = m < 0 ? -1 : n + m;
     }
     if (n < 0) *dropped_lb = std::numeric_limits<double>::infinity();  // whole circle below
   }
-  if (n < 0) n = trig_poly_roots(phi, 8, th);
+  if (n < 0) n = trig_poly_roots(phi, 8, th, err);
   for (int i = 0; i < n; ++i) {
     for (double sg : {1.0, -1.0}) {
       double t = th[i];
@@ -276,8 +305,9 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
   }
   // Named: b crosses a's axis at Q. The lines from Q to the points of a in the
   // plane through Q normal to b's tangent T: X'cosφ + Y'sinφ = Z·Z'/R.
-  double ax[8];
-  const int na = axis_crossings(k, ax);
+  double ax[8], rho_min;
+  const int na = axis_crossings(k, ax, &rho_min);
+  if (rho_min < 10 * kIll) *ill = true;
   for (int i = 0; i < na; ++i) {
     const Pt p = at(k, ax[i]);
     const double tau = std::hypot(p.X1, p.Y1);
@@ -295,8 +325,33 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
       out.push_back({wrap_pi(ax[i]), a.center + a.radius * dir, len / sigma});
     }
   }
+  return out;
+}
+
+// All binormal lines of a and b, or (max_len finite) at least every one
+// shorter than max_len: roots are then sought only in b's near windows, and
+// *dropped_lb bounds the length of any line left out from below.
+// A binormal line of (a, b) is one of (b, a): when the polynomial on b is ill
+// conditioned (see lines_one_order) the lines found on a are added. Whole
+// circle there (extra lines are harmless to callers of the _within form).
+std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infinite,
+                            double max_len = std::numeric_limits<double>::infinity(),
+                            double* dropped_lb = nullptr, const BinormalArcTest* test = nullptr) {
+  bool ill = false;
+  std::vector<Line> out = lines_one_order(a_in, b_in, infinite, max_len, dropped_lb, test, &ill);
+  const CircleFrame a = make_frame(a_in), b = make_frame(b_in);
+  if (ill && a_in.radius > 0 && b_in.radius > 0) {
+    bool inf2 = false, ill2 = false;
+    const std::vector<Line> sw =
+        lines_one_order(b_in, a_in, &inf2, std::numeric_limits<double>::infinity(), nullptr, nullptr, &ill2);
+    for (const Line& l : sw) {
+      // l.th is on a, l.on_a on b.
+      const Vec3 d = l.on_a - b.center;
+      out.push_back({std::atan2(d.dot(b.v), d.dot(b.u)), on_b(a, l.th), l.dist});
+    }
+  }
   // One entry per line: roots found twice (both charts, both Φ candidates of a
-  // double root) polish to the same θ and the same point of a.
+  // double root, both orders) polish to the same θ and the same point of a.
   std::sort(out.begin(), out.end(), [](const Line& x, const Line& y) { return x.th < y.th; });
   std::vector<Line> uniq;
   const double same_th = 1e-9;  // radians: below what a polished simple root can drift
@@ -306,7 +361,6 @@ std::vector<Line> all_lines(const Circle3& a_in, const Circle3& b_in, bool* infi
       if (std::abs(wrap_pi(l.th - u.th)) <= same_th && (l.on_a - u.on_a).norm() <= 1e-9 * (a.radius + 1e-300)) dup = true;
     if (!dup) uniq.push_back(l);
   }
-  (void)b;
   return uniq;
 }
 
@@ -343,29 +397,92 @@ std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Ci
   // One definition with the distance kernel: closest pairs that form a
   // continuum (decided there to rounding, e.g. coaxial circles whose rotated
   // doubles left the polynomial a few ulps from zero) whose point on b is off
-  // a's axis (so it has one nearest point on a) move along b: a continuum of feet.
-  // (A closest point of b on a's axis is one foot with a cone of lines.)
+  // a's axis (so it has one nearest point on a) move along b: a continuum of
+  // lines. (A closest point of b on a's axis has finitely many lines: those in
+  // the plane normal to b there.) A point b on a's axis sees all of a: a cone.
   bool inf = false;
   const Circle3Circle3Result d = circle3_circle3_distance(a, b);
-  if (d.status == CircleCircleStatus::infinitely_many && a.radius > 0 && b.radius > 0) {
-    const Vec3 n = a.normal.normalized();
-    const double scale = std::max({a.radius, b.radius, (a.center - b.center).norm()});
+  const Vec3 n = unit_normal(a.normal);
+  const double scale = std::max({a.radius, b.radius, (a.center - b.center).norm()});
+  if (d.status == CircleCircleStatus::infinitely_many && a.radius > 0 && b.radius > 0)
     inf = (d.point_b - a.center).cross(n).norm() > 1e-9 * scale;
-  }
+  if (b.radius == 0 && a.radius > 0 && (b.center - a.center).cross(n).norm() <= 1e-9 * scale) inf = true;
   const auto lines = inf ? std::vector<Line>{} : all_lines(a, b, &inf);
   if (infinitely_many) *infinitely_many = inf;
   if (inf) return {};
-  // One line per distinct point Q of b (lines come sorted by θ; the seam at ±π
-  // is checked against the first).
-  std::vector<Line> per_q;
-  const double same_th = 1e-9;
-  for (const Line& l : lines) {
-    auto it = std::find_if(per_q.begin(), per_q.end(),
-                           [&](const Line& u) { return std::abs(wrap_pi(l.th - u.th)) <= same_th; });
-    if (it == per_q.end()) per_q.push_back(l);
-    else if (l.dist < it->dist) *it = l;
+  if (a.radius == 0 || b.radius == 0) return to_public(make_frame(b), lines);
+  // One entry per line, except that roots of one branch the rounding cannot
+  // separate are one line: consecutive lines of the same branch (near: the foot
+  // on a on Q's side of a's axis; far: opposite) between which the branch
+  // derivative ψ stays within its rounding at every sample. On nearly coaxial
+  // or nearly tangent circles ψ is that flat over a whole arc and the solver
+  // polishes a root anywhere in it; the exact engine sees the one (or two
+  // close) roots of the given doubles there.
+  const double sigma = circle_pair_sigma(a, b);
+  const CircleFrame fa = make_frame(a), fb = make_frame(b);
+  const PairCoeffs k = make_coeffs(fb, fa, sigma);
+  auto branch = [&](const Line& l) {
+    const Vec3 q = on_b(fb, l.th) - a.center, pa = l.on_a - a.center;
+    const Vec3 qp = q - q.dot(fa.n) * fa.n;
+    if (qp.norm() <= 64 * kEps * scale) return 0;  // Q on a's axis: lines of a cone, kept apart
+    return qp.dot(pa) > 0 ? 1 : -1;
+  };
+  // ψσ at t, its rounding (as polish_branch judges it) and its slope.
+  auto psi_at = [&](int sg, double t, double* noise, double* slope) {
+    const Pt p = at(k, t);
+    const double rho = std::sqrt(p.X * p.X + p.Y * p.Y);
+    const double Qp = p.X * p.X1 + p.Y * p.Y1;
+    const double L1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.Z1 * p.Z1 + p.X * p.X2 + p.Y * p.Y2 + p.Z * p.Z2;
+    const double Qp1 = p.X1 * p.X1 + p.Y1 * p.Y1 + p.X * p.X2 + p.Y * p.Y2;
+    *noise = 16 * kEps * (std::abs(p.X) + std::abs(p.Y) + std::abs(p.Z)) *
+             (std::abs(p.X1) + std::abs(p.Y1) + std::abs(p.Z1)) * (1 + k.R / rho);
+    *slope = L1 - sg * k.R * (Qp1 / rho - Qp * Qp / (rho * rho * rho));
+    return Qp + p.Z * p.Z1 - sg * k.R * Qp / rho;
+  };
+  auto flat = [&](int sg, double t) {
+    double noise, slope;
+    return std::abs(psi_at(sg, t, &noise, &slope)) <= noise;
+  };
+  // How far a root polished to rounding may sit from the true one: the
+  // rounding over the slope (a double root: the flat zone around it).
+  auto spread = [&](int sg, double t) {
+    double noise, slope;
+    psi_at(sg, t, &noise, &slope);
+    return std::min(0.25, noise / std::abs(slope));
+  };
+  std::vector<Line> kept;
+  for (int sg : {1, -1, 0}) {
+    std::vector<Line> br;
+    for (const Line& l : lines)
+      if (branch(l) == sg) br.push_back(l);  // sorted by θ
+    if (sg == 0 || br.size() < 2) {
+      kept.insert(kept.end(), br.begin(), br.end());
+      continue;
+    }
+    auto joined = [&](const Line& l, const Line& r) {  // r after l going up in θ (mod 2π)
+      double gap = r.th - l.th;
+      if (gap <= 0) gap += 2 * kPi;
+      if (gap > 0.25) return false;  // far apart: never one root
+      if (gap <= 4 * (spread(sg, l.th) + spread(sg, r.th))) return true;
+      constexpr int kSamples = 8;
+      for (int i = 1; i < kSamples; ++i)
+        if (!flat(sg, l.th + gap * i / kSamples)) return false;
+      return true;
+    };
+    // Start a cluster where the previous line (cyclically) is not joined.
+    std::size_t s0 = 0;
+    while (s0 < br.size() && joined(br[(s0 + br.size() - 1) % br.size()], br[s0])) ++s0;
+    if (s0 == br.size()) {  // one cluster around the whole circle
+      kept.push_back(br[0]);
+      continue;
+    }
+    for (std::size_t i = 0; i < br.size(); ++i) {
+      const std::size_t j = (s0 + i) % br.size();
+      if (i == 0 || !joined(br[(j + br.size() - 1) % br.size()], br[j])) kept.push_back(br[j]);
+    }
   }
-  return to_public(make_frame(b), per_q);
+  std::sort(kept.begin(), kept.end(), [](const Line& x, const Line& y) { return x.th < y.th; });
+  return to_public(fb, kept);
 }
 
 }  // namespace revdist

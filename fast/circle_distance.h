@@ -43,17 +43,20 @@ struct Circle3Circle3Result {
 // max(r_a, r_b, |c_a - c_b|) (tests: 1e-13·scale random, 1e-10·scale degenerate).
 Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b);
 
-// The binormal lines of a and b, counted on circle b: the number of binormals
-// is the number of distinct points Q of circle b at which some binormal line
-// meets b. This returns one line per such point Q (the shortest line at Q when
-// several meet there: a near and a far line at a symmetric point, or the lines
-// from a point of a's axis), so its size() is that count. Lines of zero length
-// (contact points) are not binormals. *infinitely_many is set when the points Q
-// form a continuum (coaxial, Villarceau, meridian circles, a point centre on b's
-// axis), and whenever circle3_circle3_distance reports infinitely_many closest
-// pairs of two circles with the closest point of b off a's axis (they then move
-// along b; both decided to rounding); the vector is then empty. Slower than circle3_circle3_distance (a
-// degree-8 root isolation); used by the CLI and the tests, not on the hot path.
+// The binormal lines of a and b, one entry per line, so size() is their count
+// (README, `circles`): a line is a segment PQ, P on a, Q on b, normal to both
+// (to a point circle: any direction), of length above 64ε·2^e (2^e the power
+// of two just above max(radii, max |C_a - C_b| component); shorter ones are
+// contact points). A near and a far line at one point of b are two lines; the
+// lines from a point of b on a's axis are those in the plane normal to b there.
+// Roots of one branch that the rounding cannot separate (the branch derivative
+// stays within its rounding between them) are one line. *infinitely_many is set
+// when the lines form a continuum (coaxial, Villarceau, meridian circles, a
+// point on the other's axis), and whenever circle3_circle3_distance reports
+// infinitely_many closest pairs of two circles with the closest point of b off
+// a's axis (they then move along b; both decided to rounding); the vector is
+// then empty. Slower than circle3_circle3_distance (a degree-8 root
+// isolation); used by the CLI and the tests, not on the hot path.
 std::vector<CircleBinormal> circle3_circle3_binormals(const Circle3& a, const Circle3& b,
                                                       bool* infinitely_many = nullptr);
 

@@ -180,13 +180,18 @@ int poly_roots_in(const double* a, int n, double lo, double hi, double tol_abs, 
 // (t' = -1/t) for the rest, so no root is lost at infinity. Touching roots are
 // kept when |p| at a local extremum is within 64nε·Σ|a_i|. The charts overlap,
 // so roots near the seam may appear twice. th must hold 2n entries.
-int trig_poly_roots(const double* a, int n, double* th);
+// coeff_err bounds Σ_i |a_i - exact a_i| when the coefficients came out of a
+// cancelling sum (their size then says nothing about their error): a touching
+// root of the exact polynomial may sit that far from 0, so the tolerance grows
+// by its worst effect on |t| <= 1.25.
+int trig_poly_roots(const double* a, int n, double* th, double coeff_err = 0);
 // The same restricted to the angle window [th0, th1] (th1 - th0 <= 2π; it may
 // cross the seam at ±π): every root in the window, possibly a few just outside
 // (the charts overlap; up to 4(n + 1) entries with duplicates). The same
 // charts and tolerance as above. Returns -1 (nothing lost: the caller falls
 // back to the whole circle) when more than cap entries would be written.
-int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th, int cap);
+int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th, int cap,
+                           double coeff_err = 0);
 
 // Angles where ρ^2 = X^2 + Y^2 of circle p in q's frame is critical:
 // roots of (ρ^2)'/2 = X X' + Y Y', a quartic in t (at most 8 angles: two charts).

@@ -208,10 +208,18 @@ int poly_roots_in(const double* a_in, int n, double lo, double hi, double tol_ab
   return recursive_roots(a_in, n, lo, hi, tol_abs, roots);
 }
 
-int trig_poly_roots(const double* a, int n, double* th) {
+// The touching tolerance on |t| <= 1.25: Horner's own rounding (error <=
+// 2nε·1.25^n·Σ|a_i|, with margin) plus the coefficients' error, which moves a
+// value or a Bernstein coefficient on [lo, hi] ⊂ [-1.25, 1.25] by at most
+// Σ_i err_i·1.25^i (the blossom of t^i there is at most 1.25^i).
+static double touch_tol(const double* a, int n, double coeff_err) {
   double mag = 0;
   for (int i = 0; i <= n; ++i) mag += std::abs(a[i]);
-  const double tol = 64 * n * kEps * mag;  // Horner on |t| <= 1.25: error <= 2nε·1.25^n·Σ|a_i|, with margin
+  return 64 * n * kEps * mag + coeff_err * std::pow(1.25, n);
+}
+
+int trig_poly_roots(const double* a, int n, double* th, double coeff_err) {
+  const double tol = touch_tol(a, n, coeff_err);
   double r[10], b[9];
   int k = 0;
   // The charts overlap (|t| <= 1.25) so a touching root on the seam |t| = 1 is an
@@ -225,10 +233,8 @@ int trig_poly_roots(const double* a, int n, double* th) {
   return k;
 }
 
-int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th, int cap) {
-  double mag = 0;
-  for (int i = 0; i <= n; ++i) mag += std::abs(a[i]);
-  const double tol = 64 * n * kEps * mag;  // as in trig_poly_roots
+int trig_poly_roots_window(const double* a, int n, double th0, double th1, double* th, int cap, double coeff_err) {
+  const double tol = touch_tol(a, n, coeff_err);
   const double lim = 1.25, th_lim = 2 * std::atan(lim);
   double b[9], r[10];
   for (int j = 0; j <= n; ++j) b[j] = ((n - j) % 2 ? -1 : 1) * a[n - j];  // p(-1/t') t'^n

@@ -50,17 +50,18 @@ struct Part {
 // One side of the query: the solid, its parts and cached world data.
 struct Solid {
   const PosedSolid& s;
+  BiarcTreeView tree;  // s.tree; a lazy tree's nodes are built here when first split
   std::vector<Part> parts;
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
 
-  explicit Solid(const PosedSolid& ps) : s(ps), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
+  explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
   }
 
   Part from_node(std::int32_t node, int level) const {
-    const BiarcNode& n = s.tree->nodes[node];
+    const BiarcNode& n = tree.node(node);
     Part p;
     p.node = node;
     p.level = level;
@@ -68,7 +69,7 @@ struct Solid {
     p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
     if (n.fit >= 0) {
       p.has_fit = n.leaf();
-      p.fit = s.tree->fits[n.fit];
+      p.fit = tree.fit(n.fit);
     }
     return p;
   }
@@ -89,7 +90,7 @@ struct Solid {
     const Part p = parts[i];  // copy: push_back may reallocate
     Part c0, c1;
     if (!p.has_fit) {
-      const std::int32_t tc = s.tree->nodes[p.node].child;
+      const std::int32_t tc = tree.children(p.node);
       c0 = from_node(tc, 0);
       c1 = from_node(tc + 1, 0);
     } else {
@@ -174,27 +175,19 @@ struct Solid {
     return s.R * local + s.t;
   }
 
-  // The leaf of the tree next to leaf node n along the profile (dir 0: the one
-  // before, 1: after; leaves are stored depth first, so in profile order, and
-  // a closed profile wraps), when the two fits share that end point to within
-  // `*gap` (set); -1 otherwise.
-  std::int32_t adjacent_leaf(std::int32_t n, int dir, double* gap) const {
-    const auto& nodes = s.tree->nodes;
-    const auto count = static_cast<std::int32_t>(nodes.size());
-    const std::int32_t step = dir ? 1 : -1;
-    std::int32_t m = n;
-    for (std::int32_t k = 1; k < count; ++k) {
-      m = (m + step + count) % count;
-      if (m == n) return -1;
-      if (nodes[m].leaf() && nodes[m].fit >= 0) break;
+  // A genuine surface point near world point x: a greedy descent of the disks
+  // towards x's meridian point, then the nearest point of that fit's span.
+  Vec3 nearest_surface_point(const Vec3& x) {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+    std::int32_t i = 0;
+    long refined = 0;  // tree nodes only: parts with a fit end the descent
+    while (!parts[i].has_fit) {
+      const std::int32_t c = split(i, &refined);
+      const Part &c0 = parts[c], &c1 = parts[c + 1];
+      i = (q - c0.disk_c).norm() - c0.disk_r <= (q - c1.disk_c).norm() - c1.disk_r ? c : c + 1;
     }
-    if (m == n || !nodes[m].leaf() || nodes[m].fit < 0) return -1;
-    const BiarcFit& f = s.tree->fits[nodes[n].fit];
-    const BiarcFit& g = s.tree->fits[nodes[m].fit];
-    const Vec2 here = dir ? f.arc[f.arcs - 1].end() : f.arc[0].start;
-    const Vec2 there = dir ? g.arc[0].start : g.arc[g.arcs - 1].end();
-    *gap = (here - there).norm();
-    return *gap <= 1e-9 * (here.norm() + 1e-300) ? m : -1;
+    return true_point(parts[i].fit, x);
   }
 
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
@@ -207,18 +200,30 @@ struct Solid {
   // the middle of a leaf arc, to either side, by a small fraction of the
   // profile's size, checked against the true profile. Solids that share their
   // surfaces (identical, or stacked flush) are proven to overlap with it.
-  bool interior_point(Vec3* out) const {
-    double size = 0.0;
-    for (const BiarcFit& f : s.tree->fits) size = std::max(size, f.arc[0].start.norm());
-    for (const BiarcNode& n : s.tree->nodes) {
-      if (!n.leaf() || n.fit < 0) continue;
-      const Arc2& a = s.tree->fits[n.fit].arc[0];
+  bool interior_point(Vec3* out) {
+    const BiarcNode& root = tree.node(0);
+    // The scale of the profile: the root capsule holds it.
+    const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + (std::isfinite(root.radius) ? root.radius : 0.0);
+    // The first leaf in profile order (depth first, left child first).
+    std::vector<std::int32_t> stack{0};
+    while (!stack.empty()) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      const BiarcNode n = tree.node(i);
+      if (!n.leaf()) {
+        const std::int32_t c = tree.children(i);
+        stack.push_back(c + 1);
+        stack.push_back(c);
+        continue;
+      }
+      if (n.fit < 0) continue;
+      const Arc2 a = tree.fit(n.fit).arc[0];
       if (a.length <= 0) continue;
       const Vec2 m = a.point(0.5 * a.length);
       const Vec2 t = a.tangent_at(0.5 * a.length);
       for (double side : {1.0, -1.0}) {
         const Vec2 q = m + side * 1e-3 * size * Vec2(-t.y(), t.x());
-        if (q.x() < 0 || profile_side(*s.tree, q, 1e-9 * size) != Side::inside) continue;
+        if (q.x() < 0 || profile_side(tree, q, 1e-9 * size) != Side::inside) continue;
         *out = s.R * Vec3(q.x(), 0, q.y()) + s.t;
         return true;
       }
@@ -231,11 +236,11 @@ struct Solid {
   // A point outside the root's disk is outside: the meridian section is
   // bounded by the profile (and the axis between its ends), all within that
   // convex disk; only points inside it pay for the scan over the leaves.
-  Side side_of(const Vec3& x, double margin) const {
+  Side side_of(const Vec3& x, double margin) {
     const Vec3 d = s.R.transpose() * (x - s.t);
     const Vec2 q(std::hypot(d.x(), d.y()), d.z());
     if ((q - parts[0].disk_c).norm() > parts[0].disk_r + margin) return Side::outside;
-    return profile_side(*s.tree, q, margin);
+    return profile_side(tree, q, margin);
   }
 };
 
@@ -281,8 +286,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   auto proven_overlap = [&](const Vec3& p) {
     res.overlap = true;
     res.converged = true;
+    res.decided = std::isfinite(opt.threshold);  // distance 0 settles any threshold
     res.lower = res.upper = res.distance = 0.0;
     res.point_a = res.point_b = p;
+    st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
     return res;
   };
 
@@ -320,25 +327,48 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
   }
 
+  // A threshold query answered "closer" needs only one witness pair below the
+  // threshold: a few rounds of alternating projection onto the surfaces, from
+  // the closest pair of the root disks' circles, usually find one, and the
+  // best-first loop below, which would first tighten every bound under the
+  // threshold, then stops at once.
+  if (threshold) {
+    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
+    for (int i = 0; i < 3 && !(ub <= opt.threshold); ++i) {
+      const Vec3 x = A.nearest_surface_point(y);
+      y = B.nearest_surface_point(x);
+      offer(x, y);
+    }
+  }
+
   std::priority_queue<Entry> heap;
   heap.push({cheap_bound(A, A.parts[0], B, B.parts[0]) - round, 0, 0, false});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
-  // Lower bounds on the distance between the fits of the tree-leaf pairs
-  // compared so far (before the eps are taken off): a leaf's end circle is part
-  // of the neighbouring leaf too, so a neighbour pair's bound also bounds that
+  // Lower bounds on the distance between the fits of the pairs compared so
+  // far (before the eps are taken off), each fit named by its span (the same
+  // in a lazy tree as in an eager one): a fit's end circle is part of the fit
+  // of the adjacent span too, so a neighbour pair's bound also bounds that
   // circle's sub-problems against the same other fit.
   struct FitBound {
-    std::int32_t a, b;
+    const BiarcFit a, b;
     double lb;
   };
   std::vector<FitBound> fit_bounds;
-  auto fit_bound = [&](std::int32_t a, std::int32_t b, double* lb) {
-    for (const FitBound& f : fit_bounds)
-      if (f.a == a && f.b == b) {
-        *lb = f.lb;
-        return true;
-      }
-    return false;
+  auto same = [](const BiarcFit& x, const BiarcFit& y) { return x.piece == y.piece && x.u0 == y.u0 && x.u1 == y.u1; };
+  auto start = [](const BiarcFit& f) { return f.arc[0].start; };
+  auto end = [](const BiarcFit& f) { return f.arc[f.arcs - 1].end(); };
+  // The bound of the pair (neighbour of `mine` at its start (dir 0) or end,
+  // `other`), less the rounding gap between the shared end points; -inf if
+  // that pair has not been compared. mine_is_a: which side `mine` is on.
+  auto neighbour_bound = [&](const BiarcFit& mine, int dir, const BiarcFit& other, bool mine_is_a) {
+    for (const FitBound& f : fit_bounds) {
+      const BiarcFit& n = mine_is_a ? f.a : f.b;
+      if (!same(mine_is_a ? f.b : f.a, other) || n.piece != mine.piece) continue;
+      if (dir == 0 ? n.u1 != mine.u0 : n.u0 != mine.u1) continue;
+      const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
+      return f.lb - gap;
+    }
+    return -kInf;
   };
   bool unresolved = false;
 
@@ -404,25 +434,15 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     bool all_separated = true;
     const BiarcFit fa = qa.fit, fb = qb.fit;
     const double kernel_cut = cut() + fa.eps + fb.eps + round;
-    // End circles of either fit that the pair of the neighbouring leaf with the
-    // same other fit already puts at kernel_cut or more (less the end points'
-    // rounding gap): their sub-problems are skipped, their bound kept.
+    // End circles of either fit that the pair of the adjacent span's fit with
+    // the same other fit already puts at kernel_cut or more (less the end
+    // points' rounding gap): their sub-problems are skipped, their bound kept.
     unsigned covered = 0;  // bit 0/1: A's start/end circle, 2/3: B's
     double covered_lb = kInf;
-    if (qa.node >= 0 && qb.node >= 0) {
-      for (int dir = 0; dir < 2; ++dir) {
-        double gap, lb;
-        const std::int32_t na = A.adjacent_leaf(qa.node, dir, &gap);
-        if (na >= 0 && fit_bound(na, qb.node, &lb) && lb - gap >= kernel_cut) {
-          covered |= 1u << dir;
-          covered_lb = std::min(covered_lb, lb - gap);
-        }
-        const std::int32_t nb = B.adjacent_leaf(qb.node, dir, &gap);
-        if (nb >= 0 && fit_bound(qa.node, nb, &lb) && lb - gap >= kernel_cut) {
-          covered |= 4u << dir;
-          covered_lb = std::min(covered_lb, lb - gap);
-        }
-      }
+    for (int dir = 0; dir < 2; ++dir) {
+      const double la = neighbour_bound(fa, dir, fb, true), lb = neighbour_bound(fb, dir, fa, false);
+      if (la >= kernel_cut) covered |= 1u << dir, covered_lb = std::min(covered_lb, la);
+      if (lb >= kernel_cut) covered |= 4u << dir, covered_lb = std::min(covered_lb, lb);
     }
     double fit_lb = kInf;  // lower bound on the fits' distance, eps not taken off
     // The arcs of one fit join G1: only the fit's own ends are boundaries
@@ -502,7 +522,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         }
       }
     }
-    if (qa.node >= 0 && qb.node >= 0) fit_bounds.push_back({qa.node, qb.node, fit_lb});
+    fit_bounds.push_back({fa, fb, fit_lb});
     if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;
@@ -524,6 +544,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     split_pair(e, split_a);
   }
 
+  st.nodes_built = A.tree.nodes_built() + B.tree.nodes_built();
   double lb = settled_lb;
   if (!heap.empty()) lb = std::min(lb, heap.top().lb);
   if (containment_unknown) {

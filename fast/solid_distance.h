@@ -43,6 +43,7 @@ struct DistanceStats {
   long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h)
   long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
   long refined = 0;      // parts created by refining fits below the tree leaves
+  long nodes_built = 0;  // lazy trees: nodes this query built (0 for eager trees)
 };
 
 struct SolidDistanceResult {

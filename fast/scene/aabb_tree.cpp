@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "fast/scene/parallel.h"
+
 namespace revdist {
 
 std::int32_t AabbTree::build_range(const std::vector<Aabb>& boxes, std::int32_t* items, std::int32_t n) {
@@ -89,18 +91,24 @@ void AabbTree::cross(std::int32_t a, std::int32_t b, double d,
   }
 }
 
-void AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out) const {
-  if (nodes_.empty()) return;
-  // Pairs inside one subtree, then across its two children; depth is log n.
-  std::vector<std::int32_t> stack{0};
-  while (!stack.empty()) {
-    const Node& n = nodes_[stack.back()];
-    stack.pop_back();
-    if (n.leaf()) continue;
-    cross(n.left, n.right, d, out);
-    stack.push_back(n.left);
-    stack.push_back(n.right);
+double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads) const {
+  if (nodes_.empty()) return 0.0;
+  // Every pair has one lowest common ancestor, whose two subtrees it crosses:
+  // one independent task per internal node. Gathered in node order, so the
+  // output is the same for any number of threads.
+  std::vector<std::int32_t> inner;
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    if (!nodes_[k].leaf()) inner.push_back(static_cast<std::int32_t>(k));
+  if (threads <= 1) {
+    for (std::int32_t k : inner) cross(nodes_[k].left, nodes_[k].right, d, out);
+    return 0.0;
   }
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> part(inner.size());
+  const double workers = parallel_for(inner.size(), threads, [&](std::size_t i) {
+    cross(nodes_[inner[i]].left, nodes_[inner[i]].right, d, &part[i]);
+  });
+  for (const auto& p : part) out->insert(out->end(), p.begin(), p.end());
+  return workers;
 }
 
 }  // namespace revdist

@@ -34,8 +34,10 @@ class AabbTree {
   // those of a fresh build (moving instances have loosened the tree).
   bool refit(const std::vector<Aabb>& boxes, double rebuild_ratio = 2.0);
 
-  // Every pair i < j of boxes whose gap is <= d, in no particular order.
-  void pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out) const;
+  // Every pair i < j of boxes whose gap is <= d, appended in an order that
+  // depends on the tree only (not on the number of threads). Returns the CPU
+  // seconds of the worker threads besides the caller's (0 on one thread).
+  double pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads = 1) const;
 
   // Nodes of the tree (2n - 1 for n boxes); builds done so far (1 + refits that rebuilt).
   std::size_t size() const { return nodes_.size(); }

@@ -9,6 +9,8 @@
 #include <limits>
 #include <queue>
 
+#include "core/case_io.h"
+#include "core/curve_eval.h"
 #include "fast/scene/parallel.h"
 
 namespace revdist {
@@ -141,42 +143,68 @@ void SceneStats::add(const SceneStats& o) {
   cpu_ms += o.cpu_ms;
 }
 
-Scene::Scene(const Case& c, const SceneOptions& options) : options_(options), model_(build_case_model(c, options.eps)) {
+Scene::Scene(const Case& c, const SceneOptions& options)
+    : options_(options), solids_(c.solids), model_(build_case_model(c, options.eps)) {
   for (const Instance& inst : c.instances) {
     pose0_.push_back(inst.pose);
     motion_.push_back(inst.motion);
+    time0_.push_back(inst.time);
   }
-  // Per shape, a frontier of at most 32 tree capsules: tighter boxes than the
-  // root's capsule alone, and still cheap to move every frame.
-  for (const auto& shape : model_.shapes) {
-    const auto& nodes = shape->tree.nodes;
-    unreported_nodes_ += static_cast<long>(nodes.size());
-    std::vector<std::int32_t> level;
-    if (!nodes.empty()) level.push_back(0);
-    for (;;) {
-      std::vector<std::int32_t> next;
-      for (std::int32_t k : level) {
-        if (nodes[k].leaf()) next.push_back(k);
-        else next.insert(next.end(), {nodes[k].child, nodes[k].child + 1});
-      }
-      if (next.size() > 32 || next.size() == level.size()) break;
-      level = std::move(next);
-    }
-    std::vector<LocalBound> b;
-    double reach = 0.0;
-    for (std::int32_t k : level) {
-      b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
-      reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
-    }
-    reach_.push_back(reach);
-    bounds_.push_back(std::move(b));
+  // An instance whose keyframe time runs gets a shape of its own, rebuilt per frame.
+  for (std::size_t i = 0; i < c.instances.size(); ++i) {
+    if (motion_[i].time_rate == 0) continue;
+    const CaseModel::Shape& shared = *model_.shapes[model_.shape_of[i]];
+    auto own = std::make_unique<CaseModel::Shape>();
+    own->solid = shared.solid;
+    own->time = shared.time;
+    own->profile = shared.profile;
+    own->stats = shared.stats;
+    if (options.lazy_trees) rebuild_biarc_tree(own->profile, options.eps, own->tree, &own->stats, true);
+    else own->tree = shared.tree;
+    model_.instances[i].profile = &own->profile;
+    model_.instances[i].tree = &own->tree;
+    model_.shape_of[i] = model_.shapes.size();
+    model_.shapes.push_back(std::move(own));
   }
+  bounds_.resize(model_.shapes.size());
+  reach_.resize(model_.shapes.size());
+  for (std::size_t k = 0; k < model_.shapes.size(); ++k) fit_bounds(k);
   boxes_.resize(size());
   SceneStats ignored;
   set_frame(0.0, &ignored);
-  // The trees were built for frame 0: the caller's first set_frame reports them.
+  // The trees were built for frame 0: the caller's first set_frame reports
+  // those in use (not the shared ones every instance of which has its own).
   unreported_nodes_ = 0;
-  for (const auto& shape : model_.shapes) unreported_nodes_ += static_cast<long>(shape->tree.nodes.size());
+  std::vector<char> used(model_.shapes.size(), 0);
+  for (std::size_t k : model_.shape_of) used[k] = 1;
+  for (std::size_t k = 0; k < used.size(); ++k)
+    if (used[k]) unreported_nodes_ += static_cast<long>(model_.shapes[k]->tree.nodes.size());
+}
+
+// Per shape, a frontier of at most 32 tree capsules: tighter boxes than the
+// root's capsule alone, and still cheap to move every frame. A lazy tree's
+// pending nodes end the frontier (their capsules hold their parts too).
+void Scene::fit_bounds(std::size_t shape) {
+  const auto& nodes = model_.shapes[shape]->tree.nodes;
+  std::vector<std::int32_t> level;
+  if (!nodes.empty()) level.push_back(0);
+  for (;;) {
+    std::vector<std::int32_t> next;
+    for (std::int32_t k : level) {
+      if (nodes[k].child < 0) next.push_back(k);
+      else next.insert(next.end(), {nodes[k].child, nodes[k].child + 1});
+    }
+    if (next.size() > 32 || next.size() == level.size()) break;
+    level = std::move(next);
+  }
+  std::vector<LocalBound>& b = bounds_[shape];
+  b.clear();
+  double reach = 0.0;
+  for (std::int32_t k : level) {
+    b.push_back({nodes[k].seg_a, nodes[k].seg_b, nodes[k].radius});
+    reach = std::max({reach, nodes[k].seg_a.norm() + nodes[k].radius, nodes[k].seg_b.norm() + nodes[k].radius});
+  }
+  reach_[shape] = reach;
 }
 
 // The box of a rotated capsule: each end circle (radius |r| about the axis at
@@ -209,18 +237,87 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->instances = static_cast<long>(size());
   st->nodes_built += unreported_nodes_;
   unreported_nodes_ = 0;
-  for (std::size_t i = 0; i < size(); ++i) {
+  // Per instance, independent (a deforming instance has a shape of its own),
+  // so spread over the threads; the results do not depend on their number.
+  // A deforming shape is blended here; its tree waits for a query (build_stale).
+  stale_.resize(size(), 0);
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
+    if (motion_[i].time_rate == 0) return;
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+    const SolidDef& def = solids_[shape.solid];
+    const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
+    if (t == shape.time) return;
+    shape.time = t;
+    shape.profile = profile_at(def, t);
+    cylinder_bounds(model_.shape_of[i]);
+    stale_[i] = 1;
+  }));
+  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
     if (f != 0 && !motion_[i].moving()) {
       boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
-      continue;
+      return;
     }
     const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
     model_.instances[i].R = p.rotation();
     model_.instances[i].t = p.translation;
     boxes_[i] = world_box(i);
-  }
+  }));
   st->broad_rebuilt = !tree_.refit(boxes_);
   st->broad_nodes = static_cast<long>(tree_.size());
+}
+
+// The cylinder about the axis that holds every control point (a line's, a
+// Bezier's or a B-spline's curve lies in the hull of its control points, the
+// weights being positive) and every arc's whole circle: a box for a blended
+// shape whose tree is not built.
+void Scene::cylinder_bounds(std::size_t shape) {
+  double r = 0.0, z0 = kInf, z1 = -kInf;
+  auto hold = [&](double rr, double lo, double hi) {
+    r = std::max(r, rr);
+    z0 = std::min(z0, lo);
+    z1 = std::max(z1, hi);
+  };
+  for (const Piece& p : model_.shapes[shape]->profile.pieces) {
+    for (const Vec2& q : p.points) hold(std::abs(q.x()), q.y(), q.y());
+    if (p.kind == PieceKind::arc) {
+      const ArcGeometry g = arc_geometry(p);
+      if (std::isfinite(g.radius)) hold(std::abs(g.center.x()) + g.radius, g.center.y() - g.radius, g.center.y() + g.radius);
+    }
+  }
+  // Rounding of the arc's centre and radius: a few ulps of the coordinates.
+  const double pad = 64 * DBL_EPSILON * std::max({r, std::abs(z0), std::abs(z1)});
+  bounds_[shape] = {LocalBound{Vec2(r, z0), Vec2(r, z1), pad}};
+  reach_[shape] = std::hypot(r, std::max(std::abs(z0), std::abs(z1))) + pad;
+}
+
+const PosedSolid& Scene::solid(std::size_t i) const {
+  if (i < stale_.size() && stale_[i]) {
+    stale_[i] = 0;
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
+    unreported_nodes_ += static_cast<long>(shape.tree.nodes.size());  // reported by the next set_frame
+  }
+  return model_.instances[i];
+}
+
+// Builds the trees of the stale instances among `instances` (in parallel:
+// each has a shape of its own). Returns the workers' CPU seconds.
+double Scene::build_stale(const std::vector<std::int32_t>& instances, SceneStats* st) {
+  std::vector<std::int32_t> todo;
+  for (std::int32_t i : instances)
+    if (stale_[i]) {
+      stale_[i] = 0;
+      todo.push_back(i);
+    }
+  if (todo.empty()) return 0.0;
+  std::vector<long> built(todo.size(), 0);
+  const double cpu = parallel_for(todo.size(), options_.threads, [&](std::size_t k) {
+    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[todo[k]]];
+    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees);
+    built[k] = static_cast<long>(shape.tree.nodes.size());
+  });
+  for (long b : built) st->nodes_built += b;
+  return cpu;
 }
 
 SolidDistanceResult Scene::query(std::int32_t a, std::int32_t b, double threshold) const {
@@ -263,20 +360,28 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
-  tree_.pairs_within(d, &cand);
+  timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
   std::sort(cand.begin(), cand.end());
+  {
+    std::vector<std::int32_t> touched;
+    for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
+    timer.add_worker_cpu(build_stale(touched, st));
+  }
   // The remembered pairs, matched to the candidates (both sorted).
   std::vector<const PairMemory*> old(cand.size(), nullptr);
   if (options_.coherence) {
     std::size_t j = 0;
     for (std::size_t k = 0; k < cand.size(); ++k) {
       while (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) < cand[k]) ++j;
-      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid) old[k] = &memory_[j];
+      // A deforming shape's remembered witness points are no longer on its surface.
+      const bool rigid = motion_[cand[k].first].time_rate == 0 && motion_[cand[k].second].time_rate == 0;
+      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid && rigid)
+        old[k] = &memory_[j];
     }
   }
   std::vector<ScenePair> all(cand.size());
   std::vector<PairMemory> memory(cand.size());
-  std::vector<char> coherent(cand.size(), 0);
+  std::vector<char> coherent(cand.size(), 0), rerun(cand.size(), 0);
   timer.add_worker_cpu(parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
     ScenePair& p = all[k];
     p.a = cand[k].first;
@@ -285,7 +390,16 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       coherent[k] = 1;
       memory[k] = *old[k];  // keep the reference pose: bounds do not loosen frame by frame
     } else {
-      p.result = query(p.a, p.b, d);
+      // With coherence, a pair is first asked about d + h: a "farther" answer
+      // then holds for the frames its lower bound needs to lose h, where one
+      // proven just past d would be asked again next frame. Not settled so
+      // (and not proven within d by the way), it is asked about d itself.
+      const double h = options_.coherence ? 0.1 * d : 0.0;
+      p.result = query(p.a, p.b, d + h);
+      if (h > 0 && !(p.result.lower > d + h) && !(p.result.upper <= d)) {
+        p.result = query(p.a, p.b, d);
+        rerun[k] = 1;
+      }
       const PosedSolid& A = model_.instances[p.a];
       const PosedSolid& B = model_.instances[p.b];
       PairMemory& m = memory[k];
@@ -307,8 +421,9 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
     if (coherent[k]) {
       ++st->pairs_coherent;
     } else {
-      ++st->narrow_calls;
+      st->narrow_calls += 1 + rerun[k];
       st->node_pairs += p.result.stats.node_pairs;
+      st->nodes_built += p.result.stats.nodes_built;
       if (p.result.decided) ++st->pairs_threshold;
     }
     if (!(p.result.lower > d)) out.push_back(std::move(p));
@@ -327,7 +442,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
 // when the predicate stopped early), so every reported bracket is the one a
 // plain solid_distance call gives.
 template <class Stream>
-std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* st) {
   std::vector<ScenePair> best;
   if (k == 0) return best;
   double cutoff = kInf;
@@ -344,6 +459,9 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
     }
     if (batch.empty()) break;
     rerun.assign(batch.size(), 0);
+    std::vector<std::int32_t> touched;
+    for (const ScenePair& p : batch) touched.insert(touched.end(), {p.a, p.b});
+    st->cpu_ms += 1e3 * build_stale(touched, st);
     const double t = cutoff;
     st->cpu_ms += 1e3 * parallel_for(batch.size(), options_.threads, [&](std::size_t i) {
       ScenePair& p = batch[i];
@@ -358,6 +476,7 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
       ++st->pairs_tested;
       st->narrow_calls += 1 + rerun[i];
       st->node_pairs += p.result.stats.node_pairs;
+      st->nodes_built += p.result.stats.nodes_built;
       if (p.result.decided && p.result.lower > t) {
         ++st->pairs_threshold;
         continue;
@@ -373,7 +492,7 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
   return best;
 }
 
-std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) {
   const long tested0 = st->pairs_tested;
   std::vector<ScenePair> out;
   {
@@ -387,7 +506,7 @@ std::vector<ScenePair> Scene::closest(std::size_t k, SceneStats* st) const {
   return out;
 }
 
-std::vector<ScenePair> Scene::nearest(std::size_t i, std::size_t k, SceneStats* st) const {
+std::vector<ScenePair> Scene::nearest(std::size_t i, std::size_t k, SceneStats* st) {
   const long tested0 = st->pairs_tested;
   std::vector<ScenePair> out;
   {

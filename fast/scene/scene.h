@@ -26,6 +26,11 @@ struct SceneOptions {
   // have moved relative to the other solid a lower bound, which settles the
   // pair without a narrow-phase call when either decides "within d?".
   bool coherence = true;
+  // Lazy biarc trees (fast/biarc_tree.h) for the shapes whose keyframe time
+  // changes every frame ("time_rate"): a frame then costs what the queries
+  // touch. Static shapes stay eager: built once and shared by many pairs, they
+  // would be expanded again by every query (lazy expansion is per query).
+  bool lazy_trees = false;
 };
 
 struct ScenePair {
@@ -45,7 +50,8 @@ struct SceneStats {
   long pairs_coherent = 0;   // settled from the pair's previous frame, without a narrow-phase call
   long narrow_calls = 0;     // solid_distance calls (k closest reruns a pair that enters the top k)
   long node_pairs = 0;       // narrow-phase work, summed
-  long nodes_built = 0;      // biarc tree nodes built for this frame (trees are cached per shape)
+  long nodes_built = 0;      // biarc tree nodes built for this frame: shapes (cached per shape; deforming
+                             // ones rebuilt) and, with lazy trees, the nodes the queries expanded
   long broad_nodes = 0;      // nodes of the broad-phase tree
   bool broad_rebuilt = false;  // the broad phase was rebuilt rather than refitted this frame
   double time_ms = 0.0;      // wall time of the frame (poses, boxes, broad and narrow phase)
@@ -56,16 +62,20 @@ struct SceneStats {
 
 class Scene {
  public:
-  // Builds one biarc tree per distinct (solid, time) and poses the instances at frame 0.
+  // Builds one biarc tree per distinct (solid, time) (its own for an instance
+  // whose time runs, "time_rate") and poses the instances at frame 0.
   Scene(const Case& c, const SceneOptions& options);
 
   std::size_t size() const { return model_.instances.size(); }
-  const PosedSolid& solid(std::size_t i) const { return model_.instances[i]; }
+  // Instance i at the current frame (a deforming shape's tree is built now if
+  // no query has needed it yet; not to be called from several threads at once).
+  const PosedSolid& solid(std::size_t i) const;
   const Aabb& box(std::size_t i) const { return boxes_[i]; }
   const AabbTree& broad_phase() const { return tree_; }
 
-  // Poses every instance at frame f (core/motion.h), recomputes its box and
-  // refits the broad phase (rebuilt when refitting has loosened it). Adds to st.
+  // Poses every instance at frame f (core/motion.h), blends and rebuilds the
+  // shapes whose keyframe time runs, recomputes the boxes and refits the broad
+  // phase (rebuilt when refitting has loosened it). Adds to st.
   void set_frame(double f, SceneStats* st);
 
   // Every pair whose distance is <= d (within = true) or not proven > d, sorted by (a, b).
@@ -73,9 +83,9 @@ class Scene {
   // call (see SceneOptions), so brackets, not decisions, depend on the history.
   std::vector<ScenePair> within(double d, SceneStats* st);
   // The k pairs of smallest upper bound (full brackets), sorted by (upper, a, b).
-  std::vector<ScenePair> closest(std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> closest(std::size_t k, SceneStats* st);
   // The k instances nearest to instance i (a = i), sorted by (upper, b).
-  std::vector<ScenePair> nearest(std::size_t i, std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> nearest(std::size_t i, std::size_t k, SceneStats* st);
 
  private:
   struct LocalBound {  // a tree node's capsule: segment (r, z) - (r, z) and radius
@@ -92,21 +102,30 @@ class Scene {
     bool valid = false;  // a bracket with witnesses, no overlap (overlaps are recomputed)
   };
   bool settle_from_memory(const PairMemory& m, double d, ScenePair* p) const;
+  void fit_bounds(std::size_t shape);
+  void cylinder_bounds(std::size_t shape);
+  double build_stale(const std::vector<std::int32_t>& instances, SceneStats* st);
   Aabb world_box(std::size_t i) const;
   SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
   template <class Stream>
-  std::vector<ScenePair> best_k(Stream& stream, std::size_t k, SceneStats* st) const;
+  std::vector<ScenePair> best_k(Stream& stream, std::size_t k, SceneStats* st);
 
   SceneOptions options_;
   std::vector<Pose> pose0_;      // per instance, frame 0
   std::vector<InstanceMotion> motion_;  // per instance
+  std::vector<double> time0_;           // per instance: keyframe time at frame 0
+  std::vector<SolidDef> solids_;        // the case's, for shapes whose time runs
+  // Per instance: its shape was blended for this frame but its tree not yet
+  // rebuilt (built when a narrow-phase query first needs it; boxes meanwhile
+  // come from a cylinder around the blended control points).
+  mutable std::vector<char> stale_;
   CaseModel model_;
   std::vector<std::vector<LocalBound>> bounds_;  // per shape
   std::vector<Aabb> boxes_;                      // per instance, world
   std::vector<double> reach_;                    // per shape: max |local point| of the solid
   std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
   AabbTree tree_;
-  long unreported_nodes_ = 0;
+  mutable long unreported_nodes_ = 0;
 };
 
 }  // namespace revdist

@@ -173,7 +173,7 @@ TEST(CircleDistanceExact, CoplanarDisjoint) {
   expect_certified(C({1, 1, 1}, {1, 2, 2}, 2.5), C({7, -5, 4}, {2, 4, 4}, 1.5), 5.0,
                    ExactStatus::ok, "coplanar disjoint, tilted plane");
   const auto r = circle3_circle3_distance_exact(C({0, 0, 0}, {0, 0, 3}, 1), C({3, 4, 0}, {0, 0, 1}, 2));
-  EXPECT_EQ(r.binormals, 2);  // the two points of b on the centre line
+  EXPECT_EQ(r.binormals, 4);  // the two points of b on the centre line, each with a near and a far line
 }
 
 TEST(CircleDistanceExact, ConcentricCoplanar) {

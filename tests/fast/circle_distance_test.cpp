@@ -108,6 +108,11 @@ std::vector<Family> families() {
          return moved({circle(Vec3::Zero(), Vec3::UnitZ(), R), circle(Vec3(R, 0, 0), Vec3::UnitY(), rb),
                        std::abs(rb - 2 * R), 0}, r);
        }, deg},
+      {"meridian_tilted_past_axis", [](Rng& r, int i) {  // the same tilted 1e-3 ... 1e-9 out of the meridian plane
+         const double R = r.uniform(0.3, 1), rb = R * (1 + std::pow(10.0, -2 - i % 7)), g = std::pow(10.0, -3 - i % 5);
+         return moved({circle(Vec3::Zero(), Vec3::UnitZ(), R), circle(Vec3(R, 0, 0), Vec3(0, std::cos(g), std::sin(g)), rb)},
+                      r);
+       }, deg},
       {"mirror_symmetric", [](Rng& r, int) {
          const double ra = r.uniform(0.1, 1), rb = r.uniform(0.1, 1), t = r.uniform(0, kPi);
          return moved({circle(Vec3::Zero(), Vec3::UnitZ(), ra),
@@ -198,14 +203,11 @@ INSTANTIATE_TEST_SUITE_P(Families, CircleDistanceFamily, ::testing::ValuesIn(fam
 // (fast/circle_binormals.cpp, a degree-8 polynomial on the second circle) run
 // in both argument orders. The closest pair is a binormal line, so the shortest
 // line of either order is the distance (finitely many closest pairs, no contact).
-//
-// Known bug (open): on meridian circles barely past the axis the binormal solver
-// misses the closest line in one argument order (shortest line up to 1.2e-4 too
-// long, seed 1). That family is checked only by the DISABLED_ twin below (run it
-// with --gtest_also_run_disabled_tests); the count of misses is printed here.
-void swap_against_binormals(bool only_known_bug) {
+// The meridian families once lost the closest line in one order (1.2e-4 too
+// long): their polynomial cancels to the size of its rounding there.
+TEST(CircleDistanceMetamorphic, SwapAgreesWithBothParameterisations) {
   Rng rng(test_seed());
-  int compared = 0, known_misses = 0;
+  int compared = 0;
   double worst = 0;
   for (const Family& fam : families())
     for (int i = 0; i < 100; ++i) {
@@ -222,28 +224,20 @@ void swap_against_binormals(bool only_known_bug) {
         const auto lines = swapped ? circle3_circle3_binormal_lines(k.b, k.a, &inf)
                                    : circle3_circle3_binormal_lines(k.a, k.b, &inf);
         // A continuum of binormal lines (meridian circles past the axis) may still
-        // have finitely many closest pairs: nothing to compare then.
-        if (inf) continue;
+        // have finitely many closest pairs, off the continuum: those lines are
+        // listed too, so the comparison holds whenever lines came back.
+        if (inf && lines.empty()) continue;
         double shortest = INFINITY;
         for (const auto& l : lines) shortest = std::min(shortest, l.distance);
-        const bool known_bug = fam.name == "meridian_barely_past_axis";
-        if (known_bug != only_known_bug) {
-          known_misses += known_bug && std::abs(shortest - ab.distance) > 2 * fam.tol * scale;
-          continue;
-        }
         worst = std::max(worst, std::abs(shortest - ab.distance) / scale);
         // Both solvers within their accuracy of the truth (deg, measured 16 ulps).
         EXPECT_NEAR(shortest, ab.distance, 2 * fam.tol * scale) << fam.name << " #" << i << (swapped ? " (b, a)" : " (a, b)");
         ++compared;
       }
     }
-  std::printf("[ swap     ] %d comparisons, worst |shortest binormal - distance| / scale = %.3g; "
-              "known bug: %d misses on meridian_barely_past_axis\n", compared, worst, known_misses);
-  EXPECT_GT(compared, only_known_bug ? 50 : 1000);
+  std::printf("[ swap     ] %d comparisons, worst |shortest binormal - distance| / scale = %.3g\n", compared, worst);
+  EXPECT_GT(compared, 1000);
 }
-
-TEST(CircleDistanceMetamorphic, SwapAgreesWithBothParameterisations) { swap_against_binormals(false); }
-TEST(CircleDistanceMetamorphic, DISABLED_SwapAgreesWithBinormalsMeridianBarelyPastAxis) { swap_against_binormals(true); }
 
 TEST(CircleDistanceMetamorphic, PowerOfTwoScaleIsExact) {
   Rng rng(test_seed() + 1);

@@ -1,7 +1,9 @@
-// profile_side descends the biarc tree (capsules widened by the leaves' eps)
-// instead of scanning every leaf: it must answer exactly what the scan answers.
-// The scan is the same test on a copy of the tree whose capsules below the root
-// are infinite, so that nothing inside the root's capsule is pruned.
+// profile_side descends the biarc tree instead of scanning every leaf: where
+// the scan decides, the descent must give the same answer. The scan is the
+// same test on a copy of the tree whose capsules below the root are infinite,
+// so that nothing inside the root's capsule is pruned. (The descent may decide
+// where the scan cannot: a pruned capsule's true part is known not to cross
+// the ray, while the scan asks every biarc to keep eps from the point.)
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -48,8 +50,11 @@ TEST(ProfileSide, TreeDescentAgreesWithFullScan) {
             q.x() = std::abs(q.x());
           }
           const double margin = 1e-9 * size;
-          const Side got = profile_side(tree, q, margin), want = profile_side(flat, q, margin);
-          ASSERT_EQ(got, want) << file << " eps " << eps << " q = (" << q.x() << ", " << q.y() << ")";
+          BiarcTreeView view(tree, shape->profile), flat_view(flat, shape->profile);
+          const Side got = profile_side(view, q, margin), want = profile_side(flat_view, q, margin);
+          if (want != Side::unknown) {
+            ASSERT_EQ(got, want) << file << " eps " << eps << " q = (" << q.x() << ", " << q.y() << ")";
+          }
           ++checked;
           inside += got == Side::inside, outside += got == Side::outside, unknown += got == Side::unknown;
         }

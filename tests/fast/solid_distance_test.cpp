@@ -550,6 +550,66 @@ TEST(SolidTestUtil, ReversedProfileTracesTheSameCurve) {
   }
 }
 
+// ---------------------------------------------------------------------------
+// 5. Threshold predicates ("closer than d?"): the answer of the full distance
+// whenever that one is clear, a bracket that meets it, genuine witnesses.
+
+TEST(SolidDistanceThreshold, RandomPosesDecideLikeTheFullDistance) {
+  std::mt19937_64 g(test_seed(7003, "RandomPosesDecideLikeTheFullDistance"));
+  PaperModels P(kEps);
+  int decided_closer = 0, decided_farther = 0;
+  for (int k = 0; k < 20; ++k) {
+    const std::size_t ia = g() % P.m.instances.size(), ib = g() % P.m.instances.size();
+    const auto [A, B] = random_pose_pair(P.m.instances[ia], P.m.instances[ib], g, 2.5);
+    const SolidDistanceResult full = solid_distance(A, B, DistanceOptions{kTol});
+    const double round = 1e-12 * query_scale(A, B);  // see the file's head
+    for (const double f : {0.5, 0.9, 1.1, 2.0}) {
+      DistanceOptions o{kTol};
+      o.threshold = f * full.upper + 1e-3;  // + 1e-3: overlapping pairs get a positive threshold too
+      const SolidDistanceResult r = solid_distance(A, B, o);
+      const std::string what = "trial " + std::to_string(k) + " threshold " + std::to_string(o.threshold);
+      expect_certificates(A, B, r, *P.samplers[ia], *P.samplers[ib], 1e-9 * query_scale(A, B), what);
+      EXPECT_LE(std::max(r.lower, full.lower), std::min(r.upper, full.upper) + round) << what << " " << describe(r);
+      if (full.upper <= o.threshold || full.lower > o.threshold) {
+        EXPECT_TRUE(r.decided) << what << " " << describe(r);
+        EXPECT_EQ(r.upper <= o.threshold, full.upper <= o.threshold) << what << " " << describe(r);
+        decided_closer += r.upper <= o.threshold;
+        decided_farther += r.lower > o.threshold;
+      }
+    }
+  }
+  EXPECT_GT(decided_closer, 10);
+  EXPECT_GT(decided_farther, 10);
+}
+
+// Interlocked rings (the scene of the paper's Figure 1) asked "closer than
+// 0.3?" at distance 0.26: the early witness pair (alternating projection from
+// the root circles) settles it before any node pair is processed, where the
+// best-first loop alone processes about a hundred.
+TEST(SolidDistanceThreshold, InterlockedRingsSettleFromTheEarlyWitness) {
+  const Case c = read_case_text(R"({"format": "revdist/1",
+    "solids": {"ring": {"profile": [{"arc": [[1.12, 0], [1, 0.12], [0.88, 0]]}, {"arc": [[0.88, 0], [1, -0.12], [1.12, 0]]}]},
+               "link": {"profile": [{"arc": [[0.82, 0], [0.7, 0.12], [0.58, 0]]}, {"arc": [[0.58, 0], [0.7, -0.12], [0.82, 0]]}]}},
+    "instances": [{"name": "r", "solid": "ring"},
+                  {"name": "x", "solid": "link", "rotation": [0.7071067811865476, 0.7071067811865476, 0, 0], "translation": [1.2, 0, 0]}]})",
+                                "interlocked.json");
+  const CaseModel m = build_case_model(c, kEps);
+  const PosedSolid &A = m.instances[0], &B = m.instances[1];
+  const SolidDistanceResult full = solid_distance(A, B, DistanceOptions{kTol});
+  // Centre circles 0.5 apart (ring's inner equator to the link's), minus both tubes.
+  EXPECT_NEAR(full.upper, 0.26, 1e-6);
+  EXPECT_GT(full.stats.node_pairs, 50);
+  for (const auto& [X, Y] : {std::pair{&A, &B}, std::pair{&B, &A}}) {
+    DistanceOptions o{kTol};
+    o.threshold = 0.3;
+    const SolidDistanceResult r = solid_distance(*X, *Y, o);
+    EXPECT_TRUE(r.decided) << describe(r);
+    EXPECT_LE(r.upper, 0.3) << describe(r);
+    EXPECT_GE(r.upper, full.lower) << describe(r);
+    EXPECT_EQ(r.stats.node_pairs, 0) << describe(r);
+  }
+}
+
 // The brute force itself, on a closed form it must reach: two unit balls.
 TEST(SolidTestUtil, BruteForceReachesTheClosedForm) {
   const Case c = read_case(source_path("cases/distance/two_spheres.json"));

@@ -20,6 +20,7 @@
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
 #include "core/curve_eval.h"
+#include "core/input_error.h"
 #include "fast/scene/aabb_tree.h"
 #include "fast/scene/scene.h"
 #include "../solid_test_util.h"
@@ -163,8 +164,10 @@ TEST(AabbTree, PairsWithinMatchBruteForceAfterBuildAndRefit) {
   EXPECT_EQ(tree.size(), 2 * boxes.size() - 1);
   for (int round = 0; round < 3; ++round) {
     for (double d : {0.0, 0.3, 2.0}) {
-      std::vector<PairKey> got;
+      std::vector<PairKey> got, got3;
       tree.pairs_within(d, &got);
+      tree.pairs_within(d, &got3, 3);
+      EXPECT_EQ(got, got3) << "threads changed the pairs or their order";
       std::sort(got.begin(), got.end());
       std::vector<PairKey> want;
       for (int i = 0; i < 400; ++i)
@@ -234,6 +237,80 @@ TEST(Scene, WithinMatchesBruteForceOnMovingRingMesh) {
     coherent += expect_within_matches_brute(s, 0.2, brute).pairs_coherent;
   }
   EXPECT_GT(coherent, 0) << "no pair was settled from its previous frame";
+}
+
+// Keyframed solids whose time runs ("time_rate"): a grid of the bundled
+// `morph` solid, each at its own time, deforming and spinning over frames.
+Case deforming_scene(std::uint64_t seed, int side) {
+  std::ifstream in(solid_test::source_path("cases/models/morph.json"));
+  const Json morph = Json::parse(in);
+  Json doc{{"format", "revdist/1"}, {"solids", {{"morph", morph["solids"]["morph"]}}}};
+  Rng rng(seed);
+  Json inst = Json::array();
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      inst.push_back({{"name", "m" + std::to_string(i) + "_" + std::to_string(j)},
+                      {"solid", "morph"},
+                      {"time", rng.uniform(0, 4)},
+                      {"translation", {1.3 * i, 1.3 * j, rng.uniform(-0.1, 0.1)}},
+                      {"motion", {{"time_rate", rng.uniform(-0.3, 0.3)}, {"spin", {0, 0, rng.uniform(-0.05, 0.05)}}}}});
+  doc["instances"] = inst;
+  return case_from_json(doc, "deforming" + std::to_string(seed));
+}
+
+TEST(Scene, DeformingShapesMatchBruteForceLazyOrEager) {
+  const Case c = deforming_scene(test_seed(29, "Deforming"), 3);
+  SceneOptions lazy, threads;
+  lazy.lazy_trees = true;
+  threads.lazy_trees = true;
+  threads.threads = 2;  // shapes rebuilt in parallel too
+  Scene e(c, SceneOptions{}), l(c, lazy), t2(c, threads);
+  long lazy_built = 0, eager_built = 0;
+  for (double f : {0.0, 1.0, 7.0}) {
+    SceneStats se, sl, st2;
+    e.set_frame(f, &se);
+    l.set_frame(f, &sl);
+    t2.set_frame(f, &st2);
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const double t = time_at_frame(c.instances[i].time, c.instances[i].motion, f, 4.0);
+      EXPECT_GE(t, 0.0);
+      EXPECT_LE(t, 4.0);
+      // The blend at the frame's time, in both scenes.
+      const Profile want = profile_at(c.solids[0], t);
+      for (const Scene* sc : {&e, &l, &t2})
+        for (std::size_t k = 0; k < want.pieces.size(); ++k)
+          EXPECT_EQ(sc->solid(i).profile->pieces[k].points, want.pieces[k].points) << "instance " << i << " frame " << f;
+    }
+    const auto brute = brute_force(e);
+    expect_within_matches_brute(e, 0.3, brute);
+    const std::vector<ScenePair> pe = e.within(0.3, &se), pl = l.within(0.3, &sl);
+    // Both ask the same queries of trees with the same numbers.
+    expect_same(pe, pl);
+    expect_same(pl, t2.within(0.3, &st2));
+    EXPECT_EQ(sl.nodes_built, st2.nodes_built);
+    EXPECT_GT(pe.size(), 0u) << "no pair within 0.3: the test would check nothing";
+    lazy_built += sl.nodes_built;
+    eager_built += se.nodes_built;
+  }
+  std::printf("deforming scene: nodes built over 3 frames, eager %ld, lazy %ld\n", eager_built, lazy_built);
+  EXPECT_LT(lazy_built, eager_built);
+}
+
+TEST(Scene, TimeRunsBackAndForthThroughTheKeyframes) {
+  InstanceMotion m;
+  m.time_rate = 0.7;
+  double prev = time_at_frame(3.5, m, 0, 4.0);
+  EXPECT_EQ(prev, 3.5);
+  for (int f = 1; f < 200; ++f) {
+    const double t = time_at_frame(3.5, m, f, 4.0);
+    EXPECT_GE(t, 0.0);
+    EXPECT_LE(t, 4.0);
+    EXPECT_LE(std::abs(t - prev), 0.7 + 1e-12) << "frame " << f;  // continuous: at most one step per frame
+    prev = t;
+  }
+  EXPECT_NEAR(time_at_frame(3.5, m, 1, 4.0), 4.0 - 0.2, 1e-12);  // reflected at the last keyframe
+  EXPECT_THROW(read_case_text(R"({"format": "revdist/1", "solids": {"ball": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]}},
+      "instances": [{"name": "a", "solid": "ball", "motion": {"time_rate": 0.1}}]})", "static.json"), InputError);
 }
 
 TEST(Scene, ClosestAndNearestMatchSortingEveryPair) {
