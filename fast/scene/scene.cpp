@@ -397,7 +397,9 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       const double h = options_.coherence ? 0.1 * d : 0.0;
       p.result = query(p.a, p.b, d + h);
       if (h > 0 && !(p.result.lower > d + h) && !(p.result.upper <= d)) {
+        const long built = p.result.stats.nodes_built;  // the first call's work counts too
         p.result = query(p.a, p.b, d);
+        p.result.stats.nodes_built += built;
         rerun[k] = 1;
       }
       const PosedSolid& A = model_.instances[p.a];
@@ -467,7 +469,9 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
       ScenePair& p = batch[i];
       p.result = query(p.a, p.b, std::isfinite(t) ? t : kNaN);
       if (p.result.decided && !(p.result.lower > t)) {
+        const long built = p.result.stats.nodes_built;  // the first call's work counts too
         p.result = query(p.a, p.b, kNaN);
+        p.result.stats.nodes_built += built;
         rerun[i] = 1;
       }
     });
