@@ -1,9 +1,12 @@
 // `revdist distance CASE [--eps E] [--tol T] [--rel-tol R] [--engine fast|exact] [--json|--jsonl]`:
 // the distance of every query of a case (SPEC sections 5 and 6). Results are written as
 // they come (table rows, JSON records), so memory stays flat and a stopped run keeps
-// what it finished.
+// what it finished; --json stays one valid document when SIGINT, SIGTERM or SIGHUP
+// stops the run (it ends after the current query, marked "stopped").
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <stdexcept>
 #include <algorithm>
@@ -183,6 +186,50 @@ class ExactEngine {
   ExactSolidOptions xo_;
 };
 
+// --json and a stop signal: the document is closed after the query under way
+// (queries are budgeted, see SPEC 6), so a script reading the output still
+// gets valid JSON with every finished result and "stopped": the signal's name.
+// A second signal ends the run at once (the user insists; the document is then
+// cut, as with SIGKILL). --jsonl and the table need nothing: every line is
+// whole when it is written.
+std::atomic<int> g_stop{0};
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+extern "C" void request_stop(int sig) {
+  if (g_stop.exchange(sig) != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  static const char msg[] =
+      "revdist: stopping after the current query to close the JSON document (signal again to stop now)\n";
+  const ssize_t ignored = ::write(2, msg, sizeof msg - 1);
+  (void)ignored;
+}
+
+class StopGuard {
+ public:
+  explicit StopGuard(bool active) : active_(active) {
+    if (!active_) return;
+    struct sigaction sa {};
+    sa.sa_handler = request_stop;
+    sigemptyset(&sa.sa_mask);
+    for (int i = 0; i < 3; ++i) sigaction(kStopSignals[i], &sa, &old_[i]);
+  }
+  ~StopGuard() { restore(); }
+  void restore() {
+    if (!active_) return;
+    active_ = false;
+    for (int i = 0; i < 3; ++i) sigaction(kStopSignals[i], &old_[i], nullptr);
+  }
+
+ private:
+  bool active_;
+  struct sigaction old_[3];
+};
+
+const char* signal_name(int sig) { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP"; }
+
 // Table cells: the bracket rounded outward to as many digits as its width needs (at most
 // 12; --json keeps every digit), so the printed bracket still holds the distance.
 int bracket_digits(double lower, double upper) {
@@ -218,10 +265,13 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
                 "lower", "upper", "width", "witness_gap", work_column, "status");
   }
   std::fflush(stdout);
+  StopGuard stop_guard(o.json);
   Progress progress("distance", n);
   long unbracketed = 0;
-  for (std::size_t q = 0; q < n; ++q) {
+  std::size_t done = 0;
+  for (std::size_t q = 0; q < n && g_stop.load() == 0; ++q) {
     const Answer a = engine.query(c.queries[q].first, c.queries[q].second);
+    ++done;
     unbracketed += !(std::isfinite(a.upper) && std::isfinite(a.lower));
     if (o.json) {
       std::printf("%s\n  %s", q == 0 ? "" : ",", a.json.dump().c_str());
@@ -244,6 +294,15 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
     progress.update(q + 1);
   }
   progress.finish();
+  const int stopped = g_stop.load();
+  if (o.json && stopped != 0) {
+    std::printf("%s], \"stopped\": \"%s\"}\n", done == 0 ? "" : "\n ", signal_name(stopped));
+    std::fflush(stdout);
+    // Die of the signal, as the shell and a parent process expect.
+    stop_guard.restore();
+    std::signal(stopped, SIG_DFL);
+    std::raise(stopped);
+  }
   if (o.json) std::printf("%s]}\n", n == 0 ? "" : "\n ");
   std::fflush(stdout);
   check_stdout();
@@ -310,7 +369,9 @@ void add_distance_command(CLI::App& app) {
                   "also stop when upper - lower <= rel-tol * lower (digits rather than units); 0 = off");
   cmd->add_option("--engine", opts->engine, "fast (double) or exact (certified)")
       ->check(CLI::IsMember({"fast", "exact"}));
-  cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-result/1), written as results come");
+  cmd->add_flag("--json", opts->json,
+                "machine-readable JSON (revdist-result/1), written as results come; SIGINT/SIGTERM/SIGHUP end it "
+                "after the current query with a valid document marked \"stopped\"");
   cmd->add_flag("--jsonl", opts->jsonl, "one JSON result record per line (streams; a stopped run keeps its lines)");
   cmd->callback([opts, eps, tol] {
     Options o = *opts;

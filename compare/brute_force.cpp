@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/curve_eval.h"
+#include "core/polyline_parity.h"
 
 namespace revdist {
 
@@ -86,17 +87,7 @@ double ProfileNearest::distance(const Vec2& q, Vec2* foot) const {
   return best;
 }
 
-bool ProfileNearest::inside(const Vec2& q) const {
-  int crossings = 0;
-  for (std::size_t i = 0; i + 1 < pts_.size(); ++i) {
-    if (piece_[i] != piece_[i + 1]) continue;  // the next piece starts at the same point
-    const Vec2 p = pts_[i], r = pts_[i + 1];
-    if ((p.y() <= q.y()) == (r.y() <= q.y())) continue;
-    const double x = p.x() + (q.y() - p.y()) * (r.x() - p.x()) / (r.y() - p.y());
-    if (x > q.x()) ++crossings;
-  }
-  return crossings % 2 == 1;
-}
+bool ProfileNearest::inside(const Vec2& q) const { return polyline_inside(pts_, piece_, q); }
 
 Vec2 PosedProfile::local_rz(const Vec3& x_W, Vec3* e_r) const {
   const Vec3 d = R.transpose() * (x_W - t);

@@ -61,6 +61,7 @@
 #include <queue>
 #include <vector>
 
+#include "exact/bezier_ray_crossings.h"
 #include "exact/circle_distance_exact.h"
 #include "exact/double_interval.h"
 #include "exact/solid_exact_internal.h"
@@ -390,45 +391,19 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
 // decided), -1 / unknown where outward-rounded doubles cannot decide.
 int crossings_di(const std::vector<Di>& x, const std::vector<Di>& y, const std::vector<Di>& w, const Di& rho,
                  const Di& zeta, int depth) {
-  const std::size_t n = w.size();
-  if (n > 16) return -1;
-  Di Z[16], Rr[16];
-  bool zpos = true, zneg = true, rneg = true, rpos = true;
-  for (std::size_t j = 0; j < n; ++j) {
-    Z[j] = y[j] - zeta * w[j];
-    Rr[j] = x[j] - rho * w[j];
-    zpos = zpos && Z[j].pos();
-    zneg = zneg && Z[j].neg();
-    rneg = rneg && Rr[j].neg();
-    rpos = rpos && Rr[j].pos();
-  }
-  if (zpos || zneg || rneg) return 0;
-  if (rpos) {
-    bool strict = true;
-    int variations = 0;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (!Z[j].pos() && !Z[j].neg()) strict = false;
-      if (j > 0 && Z[j].pos() != Z[j - 1].pos()) ++variations;
-    }
-    if (strict && variations == 1) return 1;
-  }
-  if (depth >= 30) return -1;
-  std::vector<Di> l[3], r[3];
-  const std::vector<Di>* c[3] = {&x, &y, &w};
-  for (int k = 0; k < 3; ++k) {  // de Casteljau at 1/2; halving is exact
-    std::vector<Di> b = *c[k];
-    l[k].resize(n);
-    r[k].resize(n);
+  if (w.size() > 16) return -1;
+  auto halve_di = [](const std::vector<Di>& c, std::vector<Di>& l, std::vector<Di>& r) {  // halving is exact
+    const std::size_t n = c.size();
+    std::vector<Di> b = c;
+    l.resize(n);
+    r.resize(n);
     for (std::size_t m = 0; m < n; ++m) {
-      l[k][m] = b[0];
-      r[k][n - 1 - m] = b[n - 1 - m];
+      l[m] = b[0];
+      r[n - 1 - m] = b[n - 1 - m];
       for (std::size_t j = 0; j + 1 < n - m; ++j) b[j] = (b[j] + b[j + 1]) * Di(0.5);
     }
-  }
-  const int a = crossings_di(l[0], l[1], l[2], rho, zeta, depth + 1);
-  if (a < 0) return -1;
-  const int bb = crossings_di(r[0], r[1], r[2], rho, zeta, depth + 1);
-  return bb < 0 ? -1 : a + bb;
+  };
+  return exact_detail::bezier_ray_crossings(x, y, w, rho, zeta, 30, halve_di, depth);
 }
 Inside point_in_solid_di(const std::vector<ElemT<Di>>& elems, const Di& rho, const Di& zeta) {
   int total = 0;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/curve_eval.h"
+#include "exact/bezier_ray_crossings.h"
 #include "exact/solid_exact_internal.h"
 
 namespace revdist::solid_exact_detail {
@@ -52,46 +53,10 @@ bool parallel(const std::array<mpq_class, 3>& a, const std::array<mpq_class, 3>&
   return a[1] * b[2] == a[2] * b[1] && a[2] * b[0] == a[0] * b[2] && a[0] * b[1] == a[1] * b[0];
 }
 
-bool all_pos(const Poly& c) {
-  for (const Ia& v : c)
-    if (!v.pos()) return false;
-  return true;
-}
-bool all_neg(const Poly& c) {
-  for (const Ia& v : c)
-    if (!v.neg()) return false;
-  return true;
-}
-
 // Crossings of {(r, zeta) : r > rho} with one Bezier segment; -1 when undecided.
 int crossings(const HomSeg& s, const Ia& rho, const Ia& zeta, int depth) {
-  const std::size_t n = s.w.size();
-  Poly Z(n), Rr(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    Z[j] = s.y[j] - zeta * s.w[j];
-    Rr[j] = s.x[j] - rho * s.w[j];
-  }
-  if (all_pos(Z) || all_neg(Z) || all_neg(Rr)) return 0;  // convex hull off the ray's line / left of the point
-  if (all_pos(Rr)) {
-    // Bernstein form of Z with strict signs: sign variations bound the roots in
-    // (0, 1) and have their parity, so one variation is exactly one crossing.
-    bool strict = true;
-    int variations = 0;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (!Z[j].pos() && !Z[j].neg()) strict = false;
-      if (j > 0 && Z[j].pos() != Z[j - 1].pos()) ++variations;
-    }
-    if (strict && variations == 1) return 1;
-  }
-  if (depth >= 40) return -1;
-  HomSeg l, r;
-  halve(s.x, l.x, r.x);
-  halve(s.y, l.y, r.y);
-  halve(s.w, l.w, r.w);
-  const int a = crossings(l, rho, zeta, depth + 1);
-  if (a < 0) return -1;
-  const int b = crossings(r, rho, zeta, depth + 1);
-  return b < 0 ? -1 : a + b;
+  return exact_detail::bezier_ray_crossings(s.x, s.y, s.w, rho, zeta, 40,
+                                            [](const Poly& c, Poly& l, Poly& r) { halve(c, l, r); }, depth);
 }
 
 }  // namespace

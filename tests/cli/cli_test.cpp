@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -191,6 +193,44 @@ TEST(Cli, DistanceJsonHasSpecKeysForBothEngines) {
       }
     }
   }
+}
+
+// A stopped --json run is still one JSON document: every finished result, then
+// "stopped" with the signal's name, and the process dies of that signal (a
+// script can tell it from a complete run by both). 19,900 queries of 200 rings
+// take tens of seconds, so the signal lands mid-run.
+TEST(Cli, DistanceJsonStoppedBySignalIsOneDocument) {
+  const std::string scene = testing::TempDir() + "revdist_stop_rings_" + std::to_string(getpid()) + ".json";
+  ASSERT_EQ(run("scene-gen rings --n 200 --out " + scene).status, 0);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const std::string out = testing::TempDir() + "revdist_stop_out_" + std::to_string(getpid()) + ".json";
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen("/dev/null", "w", stderr)) _exit(127);
+      execl(REVDIST_BINARY, REVDIST_BINARY, "distance", "--json", scene.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // Wait for some results (at most 60 s), then stop the run.
+    auto size = [&] {
+      std::error_code ec;  // the child may not have opened the file yet
+      const auto n = std::filesystem::file_size(out, ec);
+      return ec ? 0 : n;
+    };
+    for (int i = 0; i < 600 && size() < 4000; ++i) usleep(100000);
+    ASSERT_EQ(kill(pid, sig), 0);
+    int st = 0;
+    ASSERT_EQ(waitpid(pid, &st, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(st) && WTERMSIG(st) == sig) << "status " << st;
+    std::ifstream in(out);
+    const auto doc = nlohmann::json::parse(in);  // throws (fails) on a cut document
+    EXPECT_EQ(doc["stopped"], sig == SIGINT ? "SIGINT" : "SIGTERM");
+    ASSERT_FALSE(doc["results"].empty());
+    EXPECT_LT(doc["results"].size(), 19900u);
+    for (const auto& res : doc["results"]) EXPECT_TRUE(res.contains("upper"));
+    std::remove(out.c_str());
+  }
+  std::remove(scene.c_str());
 }
 
 TEST(Cli, FitJsonHasSpecKeysAndAuditCertifies) {

@@ -227,5 +227,33 @@ INSTANTIATE_TEST_SUITE_P(Kinds, PatchVsBrute,
                                          Kind{true, false, "cone_torus"}, Kind{true, true, "cone_cone"}),
                          [](const testing::TestParamInfo<Kind>& i) { return std::string(i.param.name); });
 
+// A degenerate pair (an infinite family of critical lines) is never trusted as
+// separated, even when every candidate point lies on one side of the other
+// surface: the family may hide where the patches meet (patch_distance.h).
+// Nested tubes about one major circle: the major circles coincide (binormal
+// lines of length 0), and A lies wholly inside B's tube, so the sign tests
+// alone would call the pair apart.
+TEST(PatchPairDegenerate, CoincidingMajorCirclesAreNotTrustedAsSeparated) {
+  auto upper_half = [](double rho) {  // of the tube of radius rho about r = 1, z = 0
+    Arc2 a;
+    a.start = Vec2(1 + rho, 0);
+    a.tangent = Vec2(0, 1);
+    a.curvature = 1 / rho;
+    a.length = M_PI * rho;
+    return a;
+  };
+  const Patch A = make_patch(upper_half(0.2), Mat3::Identity(), Vec3::Zero());
+  const Patch B = make_patch(upper_half(0.3), Mat3::Identity(), Vec3::Zero());
+  for (const bool swapped : {false, true}) {
+    const PatchPairResult r = swapped ? patch_pair_distance(B, A) : patch_pair_distance(A, B);
+    EXPECT_TRUE(r.degenerate) << swapped;
+    EXPECT_FALSE(r.separated) << swapped;
+    ASSERT_TRUE(r.found) << swapped;
+    // The upper bound is still a genuine pair: 0.1 apart, radially (rounding of
+    // coordinates ~1: a few ulps).
+    EXPECT_NEAR(r.upper, 0.1, 64 * kEps) << swapped;
+  }
+}
+
 }  // namespace
 }  // namespace revdist

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/curve_eval.h"
+#include "core/polyline_parity.h"
 #include "core/pose.h"
 #include "core/profile.h"
 #include "fast/solid_distance.h"
@@ -131,17 +132,7 @@ class ProfileSampler {
   // Ray crossings of {(r, q.z) : r > q.r} with the sample polyline (half-open
   // in z). Right for the true curve when q is farther from it than the
   // polyline's chordal error.
-  bool inside_polyline(const Vec2& q) const {
-    int crossings = 0;
-    for (std::size_t i = 0; i + 1 < pts_.size(); ++i) {
-      if (piece_[i] != piece_[i + 1]) continue;  // the next piece starts at the same point
-      const Vec2 p = pts_[i], r = pts_[i + 1];
-      if ((p.y() <= q.y()) == (r.y() <= q.y())) continue;
-      const double x = p.x() + (q.y() - p.y()) * (r.x() - p.x()) / (r.y() - p.y());
-      if (x > q.x()) ++crossings;
-    }
-    return crossings % 2 == 1;
-  }
+  bool inside_polyline(const Vec2& q) const { return polyline_inside(pts_, piece_, q); }
 
   const Profile& profile() const { return *prof_; }
 
