@@ -397,6 +397,57 @@ PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   return q;
 }
 
+bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
+  const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
+  // (profile fraction, azimuth) of a point of P.
+  auto params = [&](const Vec3& x, double* u, double* th) {
+    Vec3 er;
+    const Vec2 q = patch_local(P, x, &er);
+    *th = std::atan2(er.dot(e2), er.dot(e1));
+    if (P.straight) {
+      const Vec2 d = P.p1 - P.p0;
+      *u = (q - P.p0).dot(d) / d.squaredNorm();
+    } else {
+      const Vec2 v = q - P.c;
+      const double phi = std::atan2(P.d0.x() * v.y() - P.d0.y() * v.x(), P.d0.dot(v));
+      *u = phi / P.sweep;
+    }
+  };
+  auto point = [&](double u, double th) {
+    Vec2 q;
+    if (P.straight) {
+      q = P.p0 + u * (P.p1 - P.p0);
+    } else {
+      const double ang = u * P.sweep, c = std::cos(ang), s = std::sin(ang);
+      q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
+    }
+    return Vec3(P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a);
+  };
+  auto g = [&](const Vec3& x) { return patch_surface_function(Q, patch_local(Q, x)); };
+  double u0, t0, u1, t1;
+  params(lo, &u0, &t0);
+  params(hi, &u1, &t1);
+  if (t1 - t0 > M_PI) t1 -= 2 * M_PI;  // the shorter way round
+  if (t0 - t1 > M_PI) t1 += 2 * M_PI;
+  double s0 = 0, s1 = 1;
+  const double g0 = g(point(u0, t0)), g1 = g(point(u1, t1));
+  if (!((g0 < 0 && g1 > 0) || (g0 > 0 && g1 < 0))) return false;
+  Vec3 x = lo;
+  for (int it = 0; it < 60; ++it) {
+    const double sm = 0.5 * (s0 + s1);
+    x = point(u0 + sm * (u1 - u0), t0 + sm * (t1 - t0));
+    const double gm = g(x);
+    if (gm == 0) break;
+    if ((gm < 0) == (g0 < 0)) s0 = sm; else s1 = sm;
+  }
+  Vec3 cq;
+  const double scale = std::max(patch_extent(Q, &cq), 1e-300);
+  if (!patch_contains_local(Q, patch_local(Q, x), 1e-9 * scale)) return false;
+  *out = x;
+  return true;
+}
+
 bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   // Q lies in its bounding disk in its own (rho, z) half-plane and on its
   // whole surface (g_Q = 0). Both tests are 1-Lipschitz functions of Q's

@@ -76,6 +76,13 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
 // proven", not "they meet".
 bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 
+// A point where patch P crosses patch Q, from two points of P on either side
+// of Q's whole surface (the kernel's a_low and a_high): bisection along the
+// segment between their (profile, azimuth) parameters for a zero of Q's
+// surface function, accepted when Q's own range holds it. It lies on both
+// patches (to rounding): a witness pair of distance ~0 for crossing fits.
+bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out);
+
 // Lower bound on the distance between two patches from their bounding tori.
 double patch_disk_bound(const Patch& A, const Patch& B);
 

@@ -520,6 +520,12 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           const Vec3 t = B.true_point(fb, y);
           if (A.side_of(t, round) == Side::inside) return proven_overlap(t);
         }
+        // No shared point proven: a point where the fits cross still gives a
+        // witness pair within the fits' errors, so touching solids need not
+        // wait for the refinement to find one.
+        Vec3 xc;
+        if (ub > fa.eps + fb.eps && patch_crossing_point(P, Q, r.a_low, r.a_high, &xc))
+          offer(A.true_point(fa, xc), B.true_point(fb, xc));
       }
     }
     fit_bounds.push_back({fa, fb, fit_lb});
