@@ -222,6 +222,43 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
   EXPECT_GE(apart[1], trials * 3 / 4);
 }
 
+// Crossing patches: the kernel cannot separate them, and patch_crossing_point
+// turns its extreme probes into a point on both patches (a witness pair of
+// distance ~0 for the solid query).
+TEST(PatchCrossingPoint, OnBothPatchesWhenTheyCross) {
+  std::mt19937_64 g(seed() + 91);
+  std::printf("PatchCrossingPoint: REVDIST_SEED=%llu\n", static_cast<unsigned long long>(seed()));
+  std::uniform_real_distribution<double> U(-1, 1);
+  int found = 0, trials = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const Arc2 arc = random_arc(g, trial % 2 == 1);
+    const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
+    const Vec3 any = std::abs(B.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    const Vec3 e1 = B.a.cross(any).normalized(), e2 = B.a.cross(e1);
+    const double th = M_PI * U(g);
+    const Vec3 er = std::cos(th) * e1 + std::sin(th) * e2;
+    const Vec2 q = arc.point(0.5 * arc.length);
+    const Vec2 n2 = B.straight ? B.n : Vec2((q - B.c) / B.rho);
+    const Vec3 x0 = patch_world(B, q, er);
+    const Vec3 n = n2.x() * er + n2.y() * B.a;
+    const Vec3 side = n.cross(Vec3(U(g), U(g), U(g))).normalized();
+    const double rs = 0.1 * (B.straight ? 1.0 : std::min(B.rho, 1.0));
+    const Vec3 w = std::cos(0.3) * n + std::sin(0.3) * side;
+    const Patch A = sphere_zone(g, x0 + rs * w, rs, -w, 0.5);  // cuts B's surface at ~0.3 rad
+    const PatchPairResult r = patch_pair_distance(A, B);
+    ASSERT_FALSE(r.separated) << "trial " << trial;
+    ++trials;
+    Vec3 x;
+    if (!patch_crossing_point(A, B, r.a_low, r.a_high, &x)) continue;
+    ++found;
+    // On both (coordinates O(3): bisection to rounding, 1e-12 with margin).
+    EXPECT_LE(point_patch_distance(A, x), 1e-12) << "trial " << trial;
+    EXPECT_LE(point_patch_distance(B, x), 1e-12) << "trial " << trial;
+  }
+  std::printf("PatchCrossingPoint: %d of %d crossing pairs gave a point\n", found, trials);
+  EXPECT_GE(found, trials / 2);
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, PatchVsBrute,
                          testing::Values(Kind{false, false, "torus_torus"}, Kind{false, true, "torus_cone"},
                                          Kind{true, false, "cone_torus"}, Kind{true, true, "cone_cone"}),
