@@ -63,9 +63,20 @@ static int bernstein_roots(const double* a, int n, double lo, double hi, double 
   for (int i = 0; i <= n; ++i) csum += std::abs(c[i]);
   const double tol_b = tol_abs + 32 * (n + 1) * kEps * csum;
   // Power to Bernstein: b_k = sum_{i <= k} C(k, i) / C(n, i) c_i.
-  static const double binom[9][9] = {
-      {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
-      {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}};
+  // ratio[n][k][i] = C(k, i) / C(n, i), the same quotients computed once.
+  struct Ratios {
+    double r[9][9][9] = {};
+    Ratios() {
+      const double binom[9][9] = {
+          {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
+          {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}};
+      for (int m = 0; m <= 8; ++m)
+        for (int k = 0; k <= m; ++k)
+          for (int i = 0; i <= k; ++i) r[m][k][i] = binom[k][i] / binom[m][i];
+    }
+  };
+  static const Ratios ratios;
+  const auto& ratio = ratios.r[n];
   struct Box {
     double b[9];
     double s0, s1;
@@ -75,7 +86,7 @@ static int bernstein_roots(const double* a, int n, double lo, double hi, double 
   Box& first = stack[top++];
   for (int k = 0; k <= n; ++k) {
     double v = 0;
-    for (int i = 0; i <= k; ++i) v += binom[k][i] / binom[n][i] * c[i];
+    for (int i = 0; i <= k; ++i) v += ratio[k][i] * c[i];
     first.b[k] = v;
   }
   first.s0 = 0;

@@ -397,24 +397,56 @@ PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   return q;
 }
 
-namespace {
-
-// A point of patch P at profile fraction u in [0, 1] and azimuth th (radians
-// about P's axis, from the frame (e1, e2) normal to it).
-Vec3 patch_point_at(const Patch& P, double u, double th, const Vec3& e1, const Vec3& e2) {
-  Vec2 q;
-  if (P.straight) {
-    q = P.p0 + u * (P.p1 - P.p0);
-  } else {
-    const double ang = u * P.sweep;
-    const double c = std::cos(ang), s = std::sin(ang);
-    q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
+bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
+  const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
+  // (profile fraction, azimuth) of a point of P.
+  auto params = [&](const Vec3& x, double* u, double* th) {
+    Vec3 er;
+    const Vec2 q = patch_local(P, x, &er);
+    *th = std::atan2(er.dot(e2), er.dot(e1));
+    if (P.straight) {
+      const Vec2 d = P.p1 - P.p0;
+      *u = (q - P.p0).dot(d) / d.squaredNorm();
+    } else {
+      const Vec2 v = q - P.c;
+      const double phi = std::atan2(P.d0.x() * v.y() - P.d0.y() * v.x(), P.d0.dot(v));
+      *u = phi / P.sweep;
+    }
+  };
+  auto point = [&](double u, double th) {
+    Vec2 q;
+    if (P.straight) {
+      q = P.p0 + u * (P.p1 - P.p0);
+    } else {
+      const double ang = u * P.sweep, c = std::cos(ang), s = std::sin(ang);
+      q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
+    }
+    return Vec3(P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a);
+  };
+  auto g = [&](const Vec3& x) { return patch_surface_function(Q, patch_local(Q, x)); };
+  double u0, t0, u1, t1;
+  params(lo, &u0, &t0);
+  params(hi, &u1, &t1);
+  if (t1 - t0 > M_PI) t1 -= 2 * M_PI;  // the shorter way round
+  if (t0 - t1 > M_PI) t1 += 2 * M_PI;
+  double s0 = 0, s1 = 1;
+  const double g0 = g(point(u0, t0)), g1 = g(point(u1, t1));
+  if (!((g0 < 0 && g1 > 0) || (g0 > 0 && g1 < 0))) return false;
+  Vec3 x = lo;
+  for (int it = 0; it < 60; ++it) {
+    const double sm = 0.5 * (s0 + s1);
+    x = point(u0 + sm * (u1 - u0), t0 + sm * (t1 - t0));
+    const double gm = g(x);
+    if (gm == 0) break;
+    if ((gm < 0) == (g0 < 0)) s0 = sm; else s1 = sm;
   }
-  q.x() = std::max(q.x(), 0.0);
-  return P.o + q.x() * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+  Vec3 cq;
+  const double scale = std::max(patch_extent(Q, &cq), 1e-300);
+  if (!patch_contains_local(Q, patch_local(Q, x), 1e-9 * scale)) return false;
+  *out = x;
+  return true;
 }
-
-}  // namespace
 
 bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   // Q lies in its bounding disk in its own (rho, z) half-plane and on its
@@ -422,6 +454,19 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   // (rho, z) (|q - disk centre|, |q - c| - rho, n . q - off), and the map to
   // that half-plane does not increase distances, so over a box of P held by a
   // ball (x, r) each stays within r of its value at x.
+  //
+  // Near contact that first-order test needs boxes as small as the gap. The
+  // second-order one does not: with f(u, th) = g_Q(x(u, th)) over the box
+  // (half-widths du, dt), f = f(m) + grad f(m) . v + R with
+  //   |R| <= (H a^2 + |x_uu| du^2 + 2 |x_uth| du dt + |x_thth| dt^2) / 2,
+  // a = |x_u| du + |x_th| dt, H bounding g_Q's Hessian over the ball (g_Q is
+  // a distance to Q's major circle (or centre) or to a line, minus a
+  // constant, in Q's meridian half-plane: the Hessian's norm is at most 1/D in
+  // that half-plane plus 1/rho about Q's axis, D the distance to the circle
+  // (or centre) and rho to the axis; a line in the half-plane gives |n_r|/rho),
+  // and |grad g_Q| = 1. So the box misses Q's surface when
+  // |f(m)| > |f_u| du + |f_th| dt + |R|: boxes need only shrink to about
+  // sqrt(gap / curvature).
   Vec2 dc;
   double dr;
   patch_disk(Q, &dc, &dr);
@@ -429,6 +474,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
   const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
   const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
+  const double curv = P.straight ? 0.0 : len * len / P.rho;  // |x_uu|
   struct Box { double u0, u1, t0, t1; };
   Box stack[64];
   int n = 0, evals = 0;
@@ -438,19 +484,62 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   while (n > 0) {
     const Box b = stack[--n];
     if (++evals > budget) return false;
-    const Vec3 c = patch_point_at(P, 0.5 * (b.u0 + b.u1), 0.5 * (b.t0 + b.t1), e1, e2);
-    const double prof = 0.5 * (b.u1 - b.u0) * len, azi = 0.5 * (b.t1 - b.t0) * rmax;
+    const double um = 0.5 * (b.u0 + b.u1), tm = 0.5 * (b.t0 + b.t1);
+    const double du = 0.5 * (b.u1 - b.u0), dt = 0.5 * (b.t1 - b.t0);
+    // P's meridian point at um and its derivative in u.
+    Vec2 q, qu;
+    if (P.straight) {
+      q = P.p0 + um * (P.p1 - P.p0);
+      qu = P.p1 - P.p0;
+    } else {
+      const double ang = um * P.sweep;
+      const double ca = std::cos(ang), sa = std::sin(ang);
+      const Vec2 dir(ca * P.d0.x() - sa * P.d0.y(), sa * P.d0.x() + ca * P.d0.y());
+      q = P.c + P.rho * dir;
+      qu = P.rho * P.sweep * Vec2(-dir.y(), dir.x());
+    }
+    const bool clamped = q.x() < 0;
+    q.x() = std::max(q.x(), 0.0);
+    const double ct = std::cos(tm), st = std::sin(tm);
+    const Vec3 er = ct * e1 + st * e2, et = ct * e2 - st * e1;
+    const Vec3 c = P.o + q.x() * er + q.y() * P.a;
+    const double prof = du * len, azi = dt * rmax;
     const double r = prof + azi + margin;
-    const Vec2 qc = patch_local(Q, c);
+    Vec3 erq;
+    const Vec2 qc = patch_local(Q, c, &erq);
     if ((qc - dc).norm() - dr > r) continue;                      // outside Q's bounding torus
-    if (std::abs(patch_surface_function(Q, qc)) > r) continue;   // off Q's surface
+    const double g = patch_surface_function(Q, qc);
+    if (std::abs(g) > r) continue;                                // off Q's surface
+    // The second-order test, where the box is smooth (r >= 0 throughout) and
+    // g_Q is smooth over the ball.
+    const double rho_min = qc.x() - (prof + azi);
+    if (!clamped && q.x() - prof >= 0 && rho_min > 0) {
+      double H = Q.straight ? std::abs(Q.n.x()) / rho_min : 0.0;
+      Vec2 n2 = Q.n;
+      bool smooth = true;
+      if (!Q.straight) {
+        const Vec2 v = qc - Q.c;
+        const double D = v.norm(), d_min = D - (prof + azi);
+        smooth = d_min > 0;
+        if (smooth) {
+          n2 = v / D;
+          H = 1.0 / d_min + (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
+        }
+      }
+      if (smooth) {
+        const Vec3 grad = n2.x() * erq + n2.y() * Q.a;
+        const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
+        const double first = std::abs(grad.dot(xu)) * du + std::abs(grad.dot(xt)) * dt;
+        const double a = len * du + rmax * dt;
+        const double second = 0.5 * (H * a * a + curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+        if (std::abs(g) > first + second + margin) continue;
+      }
+    }
     if (n + 2 > 64) return false;
     if (prof >= azi) {
-      const double um = 0.5 * (b.u0 + b.u1);
       stack[n++] = {b.u0, um, b.t0, b.t1};
       stack[n++] = {um, b.u1, b.t0, b.t1};
     } else {
-      const double tm = 0.5 * (b.t0 + b.t1);
       stack[n++] = {b.u0, b.u1, b.t0, tm};
       stack[n++] = {b.u0, b.u1, tm, b.t1};
     }
@@ -458,7 +547,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   return true;
 }
 
-PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower) {
+PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower, unsigned outer) {
   Vec3 ca, cb;
   const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
   const double scale = std::max({ea, eb, (ca - cb).norm(), 1e-300});
@@ -483,16 +572,25 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
 
   const Circle3 ea_c[2] = {patch_end_circle(A, 0), patch_end_circle(A, 1)};
   const Circle3 eb_c[2] = {patch_end_circle(B, 0), patch_end_circle(B, 1)};
-  for (const auto& e : ea_c)
-    for (const auto& f : eb_c) {
+  // Junction circles matter only to the sign tests (which need every candidate).
+  if (need_g) outer = kOuterAll;
+  const bool a_out[2] = {(outer & kOuterA0) != 0, (outer & kOuterA1) != 0};
+  const bool b_out[2] = {(outer & kOuterB0) != 0, (outer & kOuterB1) != 0};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      if (!a_out[i] || !b_out[j]) continue;
+      const Circle3& e = ea_c[i];
+      const Circle3& f = eb_c[j];
       if (c.skip(circle3_circle3_lower_bound(e, f))) continue;  // closed form first
       const auto r = circle3_circle3_distance(e, f);
       c.pair(r.point_a, r.point_b);
       c.point_a(r.point_a);
       c.point_b(r.point_b);
     }
-  for (const auto& e : ea_c) boundary_vs_interior(c, e, true);
-  for (const auto& f : eb_c) boundary_vs_interior(c, f, false);
+  for (int i = 0; i < 2; ++i)
+    if (a_out[i]) boundary_vs_interior(c, ea_c[i], true);
+  for (int j = 0; j < 2; ++j)
+    if (b_out[j]) boundary_vs_interior(c, eb_c[j], false);
   interior_vs_interior(c, disk_lb);
   if (need_g) {
     nonsmooth_points(c, true);

@@ -23,6 +23,9 @@
 
 namespace revdist {
 
+// End circles that are boundaries (patch_pair_distance's `outer`).
+constexpr unsigned kOuterA0 = 1, kOuterA1 = 2, kOuterB0 = 4, kOuterB1 = 8, kOuterAll = 15;
+
 struct PatchPairResult {
   double upper = 0.0;     // |x - y| of the best candidate: genuine points of both patches (to rounding)
   Vec3 x = Vec3::Zero();  // on patch A
@@ -49,9 +52,20 @@ struct PatchPairResult {
 // distances) to stay at or above cutoff are skipped; pass the caller's current
 // upper bound. +inf: everything. known_lower: a lower bound on the patches'
 // distance the caller already has (patch_pair_quick's), -inf when none.
+//
+// outer: which end circles are boundaries of the caller's surfaces (kOuter*
+// bits). A patch that continues G1 into another one the caller compares too
+// (the two arcs of one biarc) ends there in a junction circle, not a boundary.
+// Once the patches are proven apart, sub-problems on junction circles are
+// skipped: a closest pair of the G1 unions that lies on a junction is a
+// critical pair of the unions, normal to both arcs there, so the interior
+// enumeration of either arc pair finds it (angular ranges are closed) or that
+// arc pair's own bound covers it. The result then bounds the unions' distance,
+// not this patch pair's alone.
 PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
                                     double cutoff = std::numeric_limits<double>::infinity(),
-                                    double known_lower = -std::numeric_limits<double>::infinity());
+                                    double known_lower = -std::numeric_limits<double>::infinity(),
+                                    unsigned outer = kOuterAll);
 
 // A cheap proof that patches P and Q do not meet (no common point), for pairs
 // whose bounding tori meet: P is cut into boxes (profile range x azimuth
@@ -61,6 +75,13 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
 // when every box clears within `budget` evaluations; false means "not
 // proven", not "they meet".
 bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
+
+// A point where patch P crosses patch Q, from two points of P on either side
+// of Q's whole surface (the kernel's a_low and a_high): bisection along the
+// segment between their (profile, azimuth) parameters for a zero of Q's
+// surface function, accepted when Q's own range holds it. It lies on both
+// patches (to rounding): a witness pair of distance ~0 for crossing fits.
+bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out);
 
 // Lower bound on the distance between two patches from their bounding tori.
 double patch_disk_bound(const Patch& A, const Patch& B);

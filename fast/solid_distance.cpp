@@ -344,6 +344,32 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   std::priority_queue<Entry> heap;
   heap.push({cheap_bound(A, A.parts[0], B, B.parts[0]) - round, 0, 0, false});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
+  // Lower bounds on the distance between the fits of the pairs compared so
+  // far (before the eps are taken off), each fit named by its span (the same
+  // in a lazy tree as in an eager one): a fit's end circle is part of the fit
+  // of the adjacent span too, so a neighbour pair's bound also bounds that
+  // circle's sub-problems against the same other fit.
+  struct FitBound {
+    const BiarcFit a, b;
+    double lb;
+  };
+  std::vector<FitBound> fit_bounds;
+  auto same = [](const BiarcFit& x, const BiarcFit& y) { return x.piece == y.piece && x.u0 == y.u0 && x.u1 == y.u1; };
+  auto start = [](const BiarcFit& f) { return f.arc[0].start; };
+  auto end = [](const BiarcFit& f) { return f.arc[f.arcs - 1].end(); };
+  // The bound of the pair (neighbour of `mine` at its start (dir 0) or end,
+  // `other`), less the rounding gap between the shared end points; -inf if
+  // that pair has not been compared. mine_is_a: which side `mine` is on.
+  auto neighbour_bound = [&](const BiarcFit& mine, int dir, const BiarcFit& other, bool mine_is_a) {
+    for (const FitBound& f : fit_bounds) {
+      const BiarcFit& n = mine_is_a ? f.a : f.b;
+      if (!same(mine_is_a ? f.b : f.a, other) || n.piece != mine.piece) continue;
+      if (dir == 0 ? n.u1 != mine.u0 : n.u0 != mine.u1) continue;
+      const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
+      return f.lb - gap;
+    }
+    return -kInf;
+  };
   bool unresolved = false;
 
   // Pairs are queued with their cheap bound; the tight one is computed when
@@ -407,40 +433,84 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     double lb_pair = kInf;
     bool all_separated = true;
     const BiarcFit fa = qa.fit, fb = qb.fit;
+    const double kernel_cut = cut() + fa.eps + fb.eps + round;
+    // End circles of either fit that the pair of the adjacent span's fit with
+    // the same other fit already puts at kernel_cut or more (less the end
+    // points' rounding gap): their sub-problems are skipped, their bound kept.
+    unsigned covered = 0;  // bit 0/1: A's start/end circle, 2/3: B's
+    double covered_lb = kInf;
+    for (int dir = 0; dir < 2; ++dir) {
+      const double la = neighbour_bound(fa, dir, fb, true), lb = neighbour_bound(fb, dir, fa, false);
+      if (la >= kernel_cut) covered |= 1u << dir, covered_lb = std::min(covered_lb, la);
+      if (lb >= kernel_cut) covered |= 4u << dir, covered_lb = std::min(covered_lb, lb);
+    }
+    double fit_lb = kInf;  // lower bound on the fits' distance, eps not taken off
+    // The arcs of one fit join G1: only the fit's own ends are boundaries
+    // (patch_pair_distance's `outer`), so the fit pair is one problem; ends
+    // covered by a neighbour's pair are not boundaries to search either.
+    auto outer_ends = [](const BiarcFit& f, int i, unsigned cover) {
+      int first = -1, last = -1;
+      for (int k = 0; k < f.arcs; ++k)
+        if (f.arc[k].length > 0) last = k, first = first < 0 ? k : first;
+      return (i == first && !(cover & 1u) ? 1u : 0u) | (i == last && !(cover & 2u) ? 2u : 0u);
+    };
     for (int i = 0; i < fa.arcs; ++i) {
       if (fa.arc[i].length <= 0) continue;
       const Patch P = make_patch(fa.arc[i], pa.R, pa.t);
+      const unsigned outer_a = outer_ends(fa, i, covered);
       for (int j = 0; j < fb.arcs; ++j) {
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
-        // The cheap look first: most pairs end here.
+        const unsigned outer = outer_a | outer_ends(fb, j, covered >> 2) << 2;
+        // Closed-form bounds first (the bounding tori, and the tubes of two
+        // toroidal patches): an arc pair they retire needs no iteration.
+        {
+          Vec2 ca, cb;
+          double ra, rb;
+          patch_disk(P, &ca, &ra);
+          patch_disk(Q, &cb, &rb);
+          double lb = circle3_circle3_lower_bound(patch_disk_circle(P, ca), patch_disk_circle(Q, cb)) - ra - rb;
+          if (!P.straight && !Q.straight)
+            lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(P), patch_major_circle(Q)) - P.rho - Q.rho);
+          if (lb - fa.eps - fb.eps - round >= cut()) {
+            ++st.quick_pairs;
+            lb_pair = std::min(lb_pair, lb - fa.eps - fb.eps - round);
+            fit_lb = std::min(fit_lb, lb);
+            continue;
+          }
+        }
+        // The cheap look next: most pairs end here.
         const PatchQuick quick = patch_pair_quick(P, Q);
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
           ++st.quick_pairs;
           lb_pair = std::min(lb_pair, disk);
+          fit_lb = std::min(fit_lb, quick.lower);
           continue;
         }
         if (quick.exact) {
           ++st.quick_pairs;
           if (quick.lower - fa.eps - fb.eps < ub) offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
           lb_pair = std::min(lb_pair, disk);
+          fit_lb = std::min(fit_lb, quick.lower);
           continue;
         }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, cut() + fa.eps + fb.eps + round, quick.lower);
+        const PatchPairResult r = patch_pair_distance(P, Q, kernel_cut, quick.lower, outer);
         // The true points are within the fits' eps of the patch points: map
         // them (a Newton solve on the input curve) only when they may improve.
         if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
-          const double d = std::min(r.found ? r.upper : kInf, r.lower_skipped);
+          const double d = std::min({r.found ? r.upper : kInf, r.lower_skipped, covered_lb});
           lb_pair = std::min(lb_pair, std::max(disk, d - fa.eps - fb.eps - round));
+          fit_lb = std::min(fit_lb, std::max(quick.lower, d));
           continue;
         }
         all_separated = false;
         lb_pair = std::min(lb_pair, std::max(disk, 0.0));
+        fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
         // The patches may cross: try to prove that the solids overlap.
         for (const Vec3& x : {r.a_low, r.a_high}) {
           const Vec3 t = A.true_point(fa, x);
@@ -450,8 +520,15 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           const Vec3 t = B.true_point(fb, y);
           if (A.side_of(t, round) == Side::inside) return proven_overlap(t);
         }
+        // No shared point proven: a point where the fits cross still gives a
+        // witness pair within the fits' errors, so touching solids need not
+        // wait for the refinement to find one.
+        Vec3 xc;
+        if (ub > fa.eps + fb.eps && patch_crossing_point(P, Q, r.a_low, r.a_high, &xc))
+          offer(A.true_point(fa, xc), B.true_point(fb, xc));
       }
     }
+    fit_bounds.push_back({fa, fb, fit_lb});
     if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;

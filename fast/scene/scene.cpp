@@ -125,6 +125,19 @@ class NeighbourStream {
   std::priority_queue<Entry> q_;
 };
 
+// Sorts pairs (a, b), a < b < n, by (a, b): counting by a (linear), then each
+// a's few partners by b.
+void sort_pairs(std::vector<PairKey>* pairs, std::size_t n) {
+  std::vector<std::int32_t> start(n + 1, 0);
+  for (const PairKey& p : *pairs) ++start[p.first + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<PairKey> out(pairs->size());
+  std::vector<std::int32_t> at(start.begin(), start.end() - 1);
+  for (const PairKey& p : *pairs) out[at[p.first]++] = p;
+  for (std::size_t i = 0; i < n; ++i) std::sort(out.begin() + start[i], out.begin() + start[i + 1]);
+  *pairs = std::move(out);
+}
+
 }  // namespace
 
 void SceneStats::add(const SceneStats& o) {
@@ -361,10 +374,11 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>> cand;
   timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
-  std::sort(cand.begin(), cand.end());
+  sort_pairs(&cand, size());
   {
     std::vector<std::int32_t> touched;
-    for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
+    if (std::find(stale_.begin(), stale_.end(), 1) != stale_.end())
+      for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
     timer.add_worker_cpu(build_stale(touched, st));
   }
   // The remembered pairs, matched to the candidates (both sorted).
@@ -380,7 +394,9 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
     }
   }
   std::vector<ScenePair> all(cand.size());
-  std::vector<PairMemory> memory(cand.size());
+  // This call's memory, in the storage of the call before last (no reallocation once warmed up).
+  std::vector<PairMemory>& memory = memory_next_;
+  memory.resize(cand.size());
   std::vector<char> coherent(cand.size(), 0), rerun(cand.size(), 0);
   timer.add_worker_cpu(parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
     ScenePair& p = all[k];
@@ -397,7 +413,9 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       const double h = options_.coherence ? 0.1 * d : 0.0;
       p.result = query(p.a, p.b, d + h);
       if (h > 0 && !(p.result.lower > d + h) && !(p.result.upper <= d)) {
+        const long built = p.result.stats.nodes_built;  // the first call's work counts too
         p.result = query(p.a, p.b, d);
+        p.result.stats.nodes_built += built;
         rerun[k] = 1;
       }
       const PosedSolid& A = model_.instances[p.a];
@@ -414,8 +432,8 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
     }
     p.within = p.result.upper <= d;
   }));
-  if (options_.coherence) memory_ = std::move(memory);
-  std::vector<ScenePair> out;
+  if (options_.coherence) std::swap(memory_, memory_next_);
+  std::size_t kept = 0;  // the answer is compacted in place (no second copy of every pair)
   for (std::size_t k = 0; k < all.size(); ++k) {
     ScenePair& p = all[k];
     if (coherent[k]) {
@@ -426,12 +444,16 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       st->nodes_built += p.result.stats.nodes_built;
       if (p.result.decided) ++st->pairs_threshold;
     }
-    if (!(p.result.lower > d)) out.push_back(std::move(p));
+    if (!(p.result.lower > d)) {
+      if (kept != k) all[kept] = std::move(p);
+      ++kept;
+    }
   }
+  all.resize(kept);
   st->pairs_total += n * (n - 1) / 2;
   st->pairs_tested += static_cast<long>(cand.size());
   st->pairs_culled += n * (n - 1) / 2 - static_cast<long>(cand.size());
-  return out;
+  return all;
 }
 
 // Best-first over a stream of pairs in non-decreasing box gap. Batches have a
@@ -467,7 +489,9 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
       ScenePair& p = batch[i];
       p.result = query(p.a, p.b, std::isfinite(t) ? t : kNaN);
       if (p.result.decided && !(p.result.lower > t)) {
+        const long built = p.result.stats.nodes_built;  // the first call's work counts too
         p.result = query(p.a, p.b, kNaN);
+        p.result.stats.nodes_built += built;
         rerun[i] = 1;
       }
     });

@@ -124,6 +124,7 @@ class Scene {
   std::vector<Aabb> boxes_;                      // per instance, world
   std::vector<double> reach_;                    // per shape: max |local point| of the solid
   std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
+  std::vector<PairMemory> memory_next_;          // storage for the next call's
   AabbTree tree_;
   mutable long unreported_nodes_ = 0;
 };

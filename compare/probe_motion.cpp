@@ -1,0 +1,216 @@
+// Developer probe for the query's speed (issue 9): the paper's 15 pairs in the
+// same near-contact motion as `revdist bench` (Figure 12), timed per query in
+// thread CPU time with the work counters, on poses cached in a file so that two
+// builds (or callgrind) see the same queries. `--save F` / `--check F` write and
+// compare the brackets (they must intersect) between builds.
+// Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
+//                             [--save FILE] [--check FILE] [--repeat K]
+//                             [--select LO,HI]
+// --select re-runs the queries whose time ranks between quantiles LO and HI
+// with callgrind's collection toggled on around each (run under
+// `valgrind --tool=callgrind --collect-atstart=no`): the profile of, say, the
+// median queries rather than of the tail.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#else
+#define CALLGRIND_TOGGLE_COLLECT
+#endif
+
+#include "compare/bench_paper.h"
+#include "compare/motion.h"
+#include "core/case_io.h"
+#include "fast/biarc_tree.h"
+#include "fast/solid_distance.h"
+
+using namespace revdist;
+
+namespace {
+
+double cpu_us() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
+
+double pct(std::vector<double> v, double q) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))];
+}
+
+// One frame as stored: pair indices and the two poses (rotation, translation).
+struct FramePose {
+  int a, b;
+  double target;
+  double Ra[9], ta[3], Rb[9], tb[3];
+};
+
+struct Bracket {
+  double lower, upper;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double eps = 1e-5, tol = -1;
+  int frames = 40, repeat = 1;
+  double sel_lo = -1, sel_hi = -1;
+  std::string poses_file = "/tmp/revdist_motion_poses.bin", save, check;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : "";
+    if (a == "--eps") eps = atof(v), ++i;
+    else if (a == "--tol") tol = atof(v), ++i;
+    else if (a == "--frames") frames = atoi(v), ++i;
+    else if (a == "--poses") poses_file = v, ++i;
+    else if (a == "--save") save = v, ++i;
+    else if (a == "--check") check = v, ++i;
+    else if (a == "--repeat") repeat = atoi(v), ++i;
+    else if (a == "--select") {
+      if (sscanf(v, "%lf,%lf", &sel_lo, &sel_hi) != 2) return 2;
+      ++i;
+    }
+    else {
+      fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  if (tol < 0) tol = 2 * eps;
+  const BenchInput in = paper_bench_input(default_models_dir());
+  std::vector<Profile> profiles;
+  for (const auto& s : in.statics) profiles.push_back(profile_at(s.def, 0.0));
+
+  std::vector<FramePose> poses;
+  if (FILE* f = fopen(poses_file.c_str(), "rb")) {
+    FramePose p;
+    while (fread(&p, sizeof p, 1, f) == 1) poses.push_back(p);
+    fclose(f);
+  }
+  if (poses.empty()) {
+    double extent = INFINITY;
+    for (const Profile& p : profiles) extent = std::min(extent, profile_extent(p));
+    const double setup_eps = std::max(eps, 1e-4 * extent);
+    std::vector<BiarcTree> fine;
+    for (const Profile& p : profiles) fine.push_back(build_biarc_tree(p, setup_eps));
+    MotionOptions mo;
+    mo.frames = frames;
+    std::uint64_t seed = 20200501;
+    for (std::size_t i = 0; i < profiles.size(); ++i)
+      for (std::size_t j = i; j < profiles.size(); ++j) {
+        mo.seed = seed++;
+        PosedSolid A{&profiles[i], &fine[i]}, B{&profiles[j], &fine[j]};
+        for (const MotionFrame& f : near_contact_motion(A, [&](int) { return B; }, mo)) {
+          FramePose p{static_cast<int>(i), static_cast<int>(j), f.target, {}, {}, {}, {}};
+          std::memcpy(p.Ra, f.R_WA.data(), sizeof p.Ra), std::memcpy(p.ta, f.t_WA.data(), sizeof p.ta);
+          std::memcpy(p.Rb, f.R_WB.data(), sizeof p.Rb), std::memcpy(p.tb, f.t_WB.data(), sizeof p.tb);
+          poses.push_back(p);
+        }
+      }
+    if (FILE* f = fopen(poses_file.c_str(), "wb")) {
+      fwrite(poses.data(), sizeof(FramePose), poses.size(), f);
+      fclose(f);
+    }
+  }
+
+  std::vector<BiarcTree> trees;
+  for (const Profile& p : profiles) trees.push_back(build_biarc_tree(p, eps));
+  DistanceOptions o;
+  o.tol = tol;
+  std::vector<double> us, over_us;
+  std::vector<Bracket> got;
+  DistanceStats sum;
+  int overlaps = 0, unconverged = 0;
+  for (int rep = 0; rep < repeat; ++rep)
+    for (const FramePose& p : poses) {
+      PosedSolid A{&profiles[p.a], &trees[p.a]}, B{&profiles[p.b], &trees[p.b]};
+      A.R = Eigen::Map<const Mat3>(p.Ra), A.t = Eigen::Map<const Vec3>(p.ta);
+      B.R = Eigen::Map<const Mat3>(p.Rb), B.t = Eigen::Map<const Vec3>(p.tb);
+      const double c0 = cpu_us();
+      const SolidDistanceResult r = solid_distance(A, B, o);
+      const double dt = cpu_us() - c0;
+      if (rep > 0) continue;
+      us.push_back(dt);
+      if (p.target < 0) over_us.push_back(dt);
+      got.push_back({r.lower, r.upper});
+      if (getenv("PROBE_FINE") && p.target < 0 && !r.overlap) {
+        DistanceOptions f = o;
+        f.tol = 1e-10;
+        const SolidDistanceResult g = solid_distance(A, B, f);
+        printf("unproven overlap frame %zu target %.3e: [%.3e, %.3e] -> tol 1e-10: [%.6e, %.6e] overlap %d converged %d %s\n",
+               got.size() - 1, p.target, r.lower, r.upper, g.lower, g.upper, g.overlap, g.converged, g.reason.c_str());
+      }
+      overlaps += r.overlap, unconverged += !r.converged;
+      sum.node_pairs += r.stats.node_pairs, sum.bounds += r.stats.bounds, sum.leaf_pairs += r.stats.leaf_pairs;
+      sum.patch_pairs += r.stats.patch_pairs, sum.quick_pairs += r.stats.quick_pairs, sum.refined += r.stats.refined;
+    }
+  DistanceStats sel;
+  if (sel_lo >= 0) {
+    std::vector<std::size_t> order(us.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return us[x] < us[y]; });
+    const std::size_t lo = static_cast<std::size_t>(sel_lo * order.size());
+    const std::size_t hi = std::min(order.size(), static_cast<std::size_t>(sel_hi * order.size()));
+    for (std::size_t k = lo; k < hi; ++k) {
+      const FramePose& p = poses[order[k]];
+      PosedSolid A{&profiles[p.a], &trees[p.a]}, B{&profiles[p.b], &trees[p.b]};
+      A.R = Eigen::Map<const Mat3>(p.Ra), A.t = Eigen::Map<const Vec3>(p.ta);
+      B.R = Eigen::Map<const Mat3>(p.Rb), B.t = Eigen::Map<const Vec3>(p.tb);
+      CALLGRIND_TOGGLE_COLLECT;
+      const SolidDistanceResult r = solid_distance(A, B, o);
+      CALLGRIND_TOGGLE_COLLECT;
+      sel.node_pairs += r.stats.node_pairs, sel.bounds += r.stats.bounds, sel.leaf_pairs += r.stats.leaf_pairs;
+      sel.patch_pairs += r.stats.patch_pairs, sel.quick_pairs += r.stats.quick_pairs;
+    }
+    const double m = static_cast<double>(std::max<std::size_t>(hi - lo, 1));
+    printf("selected %zu queries (ranks %zu..%zu): node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f\n",
+           hi - lo, lo, hi, sel.node_pairs / m, sel.bounds / m, sel.leaf_pairs / m, sel.patch_pairs / m,
+           sel.quick_pairs / m);
+  }
+  const double n = static_cast<double>(us.size());
+  printf("queries %zu eps %g tol %g: median %.1f us p90 %.1f p99 %.1f mean %.1f | overlap frames %zu median %.1f p99 %.1f\n",
+         us.size(), eps, tol, pct(us, 0.5), pct(us, 0.9), pct(us, 0.99), [&] {
+           double s = 0;
+           for (double u : us) s += u;
+           return s / n;
+         }(), over_us.size(), pct(over_us, 0.5), pct(over_us, 0.99));
+  printf("per query: node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f refined %.1f; overlaps %d unconverged %d\n",
+         sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
+         sum.refined / n, overlaps, unconverged);
+  if (!save.empty())
+    if (FILE* f = fopen(save.c_str(), "wb")) {
+      fwrite(got.data(), sizeof(Bracket), got.size(), f);
+      fclose(f);
+    }
+  if (!check.empty()) {
+    std::vector<Bracket> ref(got.size());
+    FILE* f = fopen(check.c_str(), "rb");
+    if (!f || fread(ref.data(), sizeof(Bracket), ref.size(), f) != ref.size()) {
+      fprintf(stderr, "cannot read %s\n", check.c_str());
+      return 1;
+    }
+    fclose(f);
+    int bad = 0;
+    double worst_width = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      const double slack = 1e-12;
+      if (got[i].lower > ref[i].upper + slack || got[i].upper < ref[i].lower - slack) {
+        if (bad++ < 10)
+          printf("frame %zu: [%.17g, %.17g] misses reference [%.17g, %.17g]\n", i, got[i].lower, got[i].upper,
+                 ref[i].lower, ref[i].upper);
+      }
+      worst_width = std::max(worst_width, got[i].upper - got[i].lower);
+    }
+    printf("check vs %s: %d disjoint brackets, widest %.3g\n", check.c_str(), bad, worst_width);
+    return bad ? 1 : 0;
+  }
+  return 0;
+}
