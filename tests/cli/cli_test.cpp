@@ -113,7 +113,9 @@ TEST(Cli, CirclesBothShowsEachEngine) {
   EXPECT_NE(r.out.find("infinitely_many"), std::string::npos) << r.out;
   const CommandRun j = run("circles " + src("cases/circles/random.json") + " --engine both --json");
   ASSERT_EQ(j.status, 0) << j.err;
-  for (const auto& res : nlohmann::json::parse(j.out)["results"]) {
+  // The document outlives the loop (a range over a member of a temporary would not).
+  const auto doc = nlohmann::json::parse(j.out);
+  for (const auto& res : doc["results"]) {
     ASSERT_TRUE(res["fast"].contains("lines"));
     EXPECT_EQ(res["fast"]["lines"].size() >= res["fast"]["binormals"].get<std::size_t>(), true);
     for (const auto& l : res["fast"]["lines"]) EXPECT_GE(l["length"].get<double>(), res["fast"]["distance"].get<double>() * (1 - 1e-12));
