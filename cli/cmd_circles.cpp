@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,7 +112,9 @@ void run(const Options& o) {
   const std::vector<CirclePair> pairs = read_circle_pairs(o.file);
   const bool want_fast = o.engine != "exact";
   const bool want_exact = o.engine != "fast";
-  const bool progress = want_exact && pairs.size() > 200;  // exact runs ~ms per pair
+  // Progress (output.h) when the exact engine runs many pairs (~ms each).
+  std::optional<Progress> bar;
+  if (want_exact && pairs.size() > 200) bar.emplace("circles", pairs.size());
 
   Json results = Json::array();
   std::vector<FastAnswer> fast_answers;  // for the line listing under the table
@@ -122,7 +125,7 @@ void run(const Options& o) {
                   ? std::vector<std::string>{"#", "distance", "[lower, upper]", "status", "binormals", "point_a", "point_b"}
                   : std::vector<std::string>{"#", "distance", "status", "binormals", "point_a", "point_b"});
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (progress && i % 100 == 0) std::fprintf(stderr, "\rcircles: %zu/%zu", i, pairs.size());
+    if (bar) bar->update(i);
     const std::string idx = std::to_string(i);
     if (o.engine == "both") {
       const FastAnswer f = run_fast(pairs[i]);
@@ -150,7 +153,7 @@ void run(const Options& o) {
                  std::to_string(e.binormals), vec_text(e.point_a), vec_text(e.point_b)});
     }
   }
-  if (progress) std::fprintf(stderr, "\rcircles: %zu/%zu\n", pairs.size(), pairs.size());
+  if (bar) bar->finish();
 
   if (o.json) {
     const Json doc{{"format", "revdist-circles-result/1"}, {"engine", o.engine}, {"results", results}};

@@ -86,8 +86,7 @@ void run(const Options& o) {
   std::string text;
   SceneStats total;
   std::vector<double> frame_ms;
-  const auto start = std::chrono::steady_clock::now();
-  bool progress = false;
+  Progress progress("scene", static_cast<std::size_t>(o.frames));  // output.h: after 1 s only
   for (long f = 0; f < o.frames; ++f) {
     SceneStats st;
     scene.set_frame(static_cast<double>(f), &st);
@@ -126,13 +125,9 @@ void run(const Options& o) {
       text += line;
       if (!o.stats_only && !pairs.empty()) text += table.str();
     }
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed > 1.0 && f + 1 < o.frames) {
-      std::fprintf(stderr, "\rscene: %ld/%ld frames", f + 1, o.frames);
-      progress = true;
-    }
+    progress.update(static_cast<std::size_t>(f + 1));
   }
-  if (progress) std::fprintf(stderr, "\n");
+  progress.finish();
   const Json summary{{"frames", o.frames},
                      {"build_ms", build_ms},
                      {"frame_ms_median", percentile(frame_ms, 0.5)},

@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -122,17 +123,14 @@ void run(const Options& o) {
     throw InputError("--shard: expected K/M with 1 <= K <= M, got \"" + o.shard + "\"");
   if (!(o.stress.eps > 0) || !(o.stress.tol > 0)) throw InputError("--eps and --tol must be positive");
   const std::vector<std::string> names = family_names(o.families);
-  const auto start = std::chrono::steady_clock::now();
-  bool shown = false;
+  // Progress (output.h): a rewritten line on a terminal, plain lines every 10 s elsewhere.
+  std::optional<Progress> bar;
   auto progress = [&](long done, long total) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (s > 1.0 && (done % 50 == 0 || done == total)) {
-      std::fprintf(stderr, "\rstress: %ld/%ld cases (%.0f s)", done, total, s);
-      shown = true;
-    }
+    if (!bar) bar.emplace("stress", static_cast<std::size_t>(total));
+    bar->update(static_cast<std::size_t>(done));
   };
   const StressReport r = run_stress(names, o.n, o.seed, k, m, o.stress, StressEngines{}, progress);
-  if (shown) std::fprintf(stderr, "\n");
+  if (bar) bar->finish();
   if (!o.save_worst.empty()) save_worst(r, o.save_worst);
   print(r, o.json);
 }
