@@ -397,9 +397,35 @@ PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
   return q;
 }
 
-bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
+namespace {
+
+// The point of patch P's arc or segment at profile fraction u in [0, 1]
+// (local (r, z), r not clamped to the axis) and, when qu is given, its
+// derivative in u.
+Vec2 meridian_point(const Patch& P, double u, Vec2* qu = nullptr) {
+  if (P.straight) {
+    if (qu) *qu = P.p1 - P.p0;
+    return P.p0 + u * (P.p1 - P.p0);
+  }
+  const double ang = u * P.sweep;
+  const double ca = std::cos(ang), sa = std::sin(ang);
+  const Vec2 dir(ca * P.d0.x() - sa * P.d0.y(), sa * P.d0.x() + ca * P.d0.y());
+  if (qu) *qu = P.rho * P.sweep * Vec2(-dir.y(), dir.x());
+  return P.c + P.rho * dir;
+}
+
+// Unit vectors e1, e2 normal to P's axis: azimuths about it are measured from e1.
+void axis_frame(const Patch& P, Vec3* e1, Vec3* e2) {
   const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
+  *e1 = P.a.cross(any).normalized();
+  *e2 = P.a.cross(*e1);
+}
+
+}  // namespace
+
+bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
+  Vec3 e1, e2;
+  axis_frame(P, &e1, &e2);
   // (profile fraction, azimuth) of a point of P.
   auto params = [&](const Vec3& x, double* u, double* th) {
     Vec3 er;
@@ -415,13 +441,7 @@ bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const 
     }
   };
   auto point = [&](double u, double th) {
-    Vec2 q;
-    if (P.straight) {
-      q = P.p0 + u * (P.p1 - P.p0);
-    } else {
-      const double ang = u * P.sweep, c = std::cos(ang), s = std::sin(ang);
-      q = P.c + P.rho * Vec2(c * P.d0.x() - s * P.d0.y(), s * P.d0.x() + c * P.d0.y());
-    }
+    const Vec2 q = meridian_point(P, u);
     return Vec3(P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a);
   };
   auto g = [&](const Vec3& x) { return patch_surface_function(Q, patch_local(Q, x)); };
@@ -470,8 +490,8 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   Vec2 dc;
   double dr;
   patch_disk(Q, &dc, &dr);
-  const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 e1 = P.a.cross(any).normalized(), e2 = P.a.cross(e1);
+  Vec3 e1, e2;
+  axis_frame(P, &e1, &e2);
   const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
   const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
   const double curv = P.straight ? 0.0 : len * len / P.rho;  // |x_uu|
@@ -486,18 +506,8 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
     if (++evals > budget) return false;
     const double um = 0.5 * (b.u0 + b.u1), tm = 0.5 * (b.t0 + b.t1);
     const double du = 0.5 * (b.u1 - b.u0), dt = 0.5 * (b.t1 - b.t0);
-    // P's meridian point at um and its derivative in u.
-    Vec2 q, qu;
-    if (P.straight) {
-      q = P.p0 + um * (P.p1 - P.p0);
-      qu = P.p1 - P.p0;
-    } else {
-      const double ang = um * P.sweep;
-      const double ca = std::cos(ang), sa = std::sin(ang);
-      const Vec2 dir(ca * P.d0.x() - sa * P.d0.y(), sa * P.d0.x() + ca * P.d0.y());
-      q = P.c + P.rho * dir;
-      qu = P.rho * P.sweep * Vec2(-dir.y(), dir.x());
-    }
+    Vec2 qu;
+    Vec2 q = meridian_point(P, um, &qu);
     const bool clamped = q.x() < 0;
     q.x() = std::max(q.x(), 0.0);
     const double ct = std::cos(tm), st = std::sin(tm);

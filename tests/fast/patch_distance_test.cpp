@@ -122,6 +122,25 @@ TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
   EXPECT_GT(separated, 50);
 }
 
+// A point of patch B (its arc's middle at a random azimuth) and B's unit
+// normal there (flipped at random when `random_sign`), with B's curvature
+// scale (its arc radius, at most 1; 1 for a cone).
+struct Foot {
+  Vec3 x, n;
+  double scale;
+};
+Foot random_foot(std::mt19937_64& g, const Patch& B, const Arc2& arc, bool random_sign) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Vec3 any = std::abs(B.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 e1 = B.a.cross(any).normalized(), e2 = B.a.cross(e1);
+  const double th = M_PI * U(g);
+  const Vec3 er = std::cos(th) * e1 + std::sin(th) * e2;
+  const Vec2 q = arc.point(0.5 * arc.length);
+  const Vec2 n2 = B.straight ? B.n : Vec2((q - B.c) / B.rho);
+  const double sign = random_sign && U(g) < 0 ? -1.0 : 1.0;
+  return {patch_world(B, q, er), sign * (n2.x() * er + n2.y() * B.a), B.straight ? 1.0 : std::min(B.rho, 1.0)};
+}
+
 // A zone of the sphere of radius rs around centre, about a random axis, holding
 // the directions within `half` radians of direction w.
 Patch sphere_zone(std::mt19937_64& g, const Vec3& centre, double rs, const Vec3& w, double half) {
@@ -162,17 +181,9 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
       arc.length = r * (p1 - p0);
     }
     const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    // The foot: the arc's middle at a random azimuth; B's unit normal there.
-    const Vec3 any = std::abs(B.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = B.a.cross(any).normalized(), e2 = B.a.cross(e1);
-    const double th = M_PI * U(g);
-    const Vec3 er = std::cos(th) * e1 + std::sin(th) * e2;
-    const Vec2 q = arc.point(0.5 * arc.length);
-    const Vec2 n2 = B.straight ? B.n : Vec2((q - B.c) / B.rho);
-    const Vec3 x0 = patch_world(B, q, er);
-    const Vec3 n = (U(g) < 0 ? -1.0 : 1.0) * (n2.x() * er + n2.y() * B.a);
-    const double scale = B.straight ? 1.0 : std::min(B.rho, 1.0);
-    const double rs = 0.1 * scale;
+    const Foot f = random_foot(g, B, arc, true);
+    const Vec3 &x0 = f.x, &n = f.n;
+    const double scale = f.scale, rs = 0.1 * scale;
     ++trials;
     for (int k = 0; k < 7; ++k) {
       const double delta = gaps[k] * scale;
@@ -194,17 +205,10 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
   for (int trial = 0; trial < 120; ++trial) {
     const Arc2 arc = random_arc(g, trial % 2 == 1);
     const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Vec3 any = std::abs(B.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = B.a.cross(any).normalized(), e2 = B.a.cross(e1);
-    const double th = M_PI * U(g);
-    const Vec3 er = std::cos(th) * e1 + std::sin(th) * e2;
-    const Vec2 q = arc.point(0.5 * arc.length);
-    const Vec2 n2 = B.straight ? B.n : Vec2((q - B.c) / B.rho);
-    const Vec3 x0 = patch_world(B, q, er);
-    const Vec3 n = (U(g) < 0 ? -1.0 : 1.0) * (n2.x() * er + n2.y() * B.a);
+    const Foot f = random_foot(g, B, arc, true);
+    const Vec3 &x0 = f.x, &n = f.n;
     const Vec3 side = n.cross(Vec3(U(g), U(g), U(g))).normalized();
-    const double scale = B.straight ? 1.0 : std::min(B.rho, 1.0);
-    const double rs = 0.1 * scale;
+    const double rs = 0.1 * f.scale;
     for (double beta : {0.02, 0.1, 0.3}) {
       const Vec3 w = std::cos(beta) * n + std::sin(beta) * side;
       const Patch A = sphere_zone(g, x0 + rs * w, rs, -w, 0.5);
@@ -233,16 +237,10 @@ TEST(PatchCrossingPoint, OnBothPatchesWhenTheyCross) {
   for (int trial = 0; trial < 150; ++trial) {
     const Arc2 arc = random_arc(g, trial % 2 == 1);
     const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Vec3 any = std::abs(B.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = B.a.cross(any).normalized(), e2 = B.a.cross(e1);
-    const double th = M_PI * U(g);
-    const Vec3 er = std::cos(th) * e1 + std::sin(th) * e2;
-    const Vec2 q = arc.point(0.5 * arc.length);
-    const Vec2 n2 = B.straight ? B.n : Vec2((q - B.c) / B.rho);
-    const Vec3 x0 = patch_world(B, q, er);
-    const Vec3 n = n2.x() * er + n2.y() * B.a;
+    const Foot f = random_foot(g, B, arc, false);
+    const Vec3 &x0 = f.x, &n = f.n;
     const Vec3 side = n.cross(Vec3(U(g), U(g), U(g))).normalized();
-    const double rs = 0.1 * (B.straight ? 1.0 : std::min(B.rho, 1.0));
+    const double rs = 0.1 * f.scale;
     const Vec3 w = std::cos(0.3) * n + std::sin(0.3) * side;
     const Patch A = sphere_zone(g, x0 + rs * w, rs, -w, 0.5);  // cuts B's surface at ~0.3 rad
     const PatchPairResult r = patch_pair_distance(A, B);
