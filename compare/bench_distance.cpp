@@ -29,6 +29,7 @@
 #include "fast/case_model.h"
 #include "fast/solid_distance.h"
 #include "compare/mesh_fcl.h"
+#include "compare/thread_clock.h"
 
 namespace {
 
@@ -94,13 +95,6 @@ std::vector<PosePair> make_poses(const PosedSolid& a, const PosedSolid& b, std::
     out.push_back(p);
   }
   return out;
-}
-
-// CPU time of this thread: the machine may be shared, so wall time is reported beside it.
-double thread_cpu_us() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
 }
 
 double percentile(std::vector<double> v, double q) {

@@ -15,6 +15,7 @@
 
 #include "compare/mesh_fcl.h"
 #include "compare/motion.h"
+#include "compare/thread_clock.h"
 #include "core/case_io.h"
 #include "core/input_error.h"
 #include "exact/solid_distance_exact.h"
@@ -24,20 +25,6 @@
 namespace revdist {
 
 namespace {
-
-double thread_cpu_us() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-// Nearest-rank percentile (q in (0, 1]) of the samples.
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const std::size_t k = static_cast<std::size_t>(std::ceil(q * v.size()));
-  return v[std::min(v.size() - 1, k > 0 ? k - 1 : 0)];
-}
 
 double mean(const std::vector<double>& v) {
   if (v.empty()) return NAN;
@@ -114,12 +101,15 @@ struct QueryTimes {
 void set_counters(BenchRecord& r, const QueryTimes& q) {
   const double n = std::max<std::size_t>(1, q.us.size());
   r.samples = static_cast<int>(q.us.size());
-  r.median_us = percentile(q.us, 0.5), r.p90_us = percentile(q.us, 0.9), r.mean_us = mean(q.us);
+  r.median_us = nearest_rank_percentile(q.us, 0.5);
+  r.p90_us = nearest_rank_percentile(q.us, 0.9);
+  r.mean_us = mean(q.us);
   r.node_pairs = q.node_pairs / n, r.leaf_pairs = q.leaf_pairs / n, r.patch_pairs = q.patch_pairs / n;
   r.quick_pairs = q.quick_pairs / n, r.refined = q.refined / n;
   r.overlaps = q.overlaps, r.unconverged = q.unconverged;
   r.planned_overlaps = static_cast<int>(q.overlap_us.size());
-  r.overlap_median_us = percentile(q.overlap_us, 0.5), r.overlap_p99_us = percentile(q.overlap_us, 0.99);
+  r.overlap_median_us = nearest_rank_percentile(q.overlap_us, 0.5);
+  r.overlap_p99_us = nearest_rank_percentile(q.overlap_us, 0.99);
 }
 
 // Times solid_distance on every frame, one call per frame, same poses as FCL.
@@ -317,7 +307,7 @@ class Runner {
       BenchRecord r;
       r.experiment = "build", r.pair = s.name, r.eps = eps, r.tol = 2 * eps;
       r.samples = static_cast<int>(us.size());
-      r.median_us = percentile(us, 0.5), r.p90_us = percentile(us, 0.9), r.mean_us = mean(us);
+      r.median_us = nearest_rank_percentile(us, 0.5), r.p90_us = nearest_rank_percentile(us, 0.9), r.mean_us = mean(us);
       r.nodes = t.stats.nodes, r.leaves = t.stats.leaves, r.bytes = static_cast<long>(t.stats.bytes);
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
       if (o_.fcl) {
@@ -338,7 +328,7 @@ class Runner {
       BenchRecord r;
       r.experiment = "build", r.pair = def.name, r.eps = eps, r.tol = 2 * eps;
       r.samples = static_cast<int>(m.rebuild_us.size());
-      r.median_us = percentile(m.rebuild_us, 0.5), r.p90_us = percentile(m.rebuild_us, 0.9);
+      r.median_us = nearest_rank_percentile(m.rebuild_us, 0.5), r.p90_us = nearest_rank_percentile(m.rebuild_us, 0.9);
       r.mean_us = mean(m.rebuild_us);
       for (const auto& f : m.frames) {
         r.nodes = std::max<long>(r.nodes, f->stats.nodes), r.leaves = std::max<long>(r.leaves, f->stats.leaves);
@@ -385,7 +375,7 @@ class Runner {
       BenchRecord r;
       r.experiment = "motion", r.pair = pm.name, r.eps = eps, r.tol = 2 * eps;
       set_counters(r, q);
-      r.proven_median_us = percentile(qp.us, 0.5), r.proven_p90_us = percentile(qp.us, 0.9);
+      r.proven_median_us = nearest_rank_percentile(qp.us, 0.5), r.proven_p90_us = nearest_rank_percentile(qp.us, 0.9);
       r.nodes = ta->stats.nodes + tb->stats.nodes, r.leaves = ta->stats.leaves + tb->stats.leaves;
       r.bytes = static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
@@ -402,7 +392,9 @@ class Runner {
           r.fcl_zero += fr.distance == 0;
           if (next < pm.sample.size() && pm.sample[next] == j) fcl_sample.push_back(fr.distance), ++next;
         }
-        r.fcl_median_us = percentile(us, 0.5), r.fcl_p90_us = percentile(us, 0.9), r.fcl_mean_us = mean(us);
+        r.fcl_median_us = nearest_rank_percentile(us, 0.5);
+        r.fcl_p90_us = nearest_rank_percentile(us, 0.9);
+        r.fcl_mean_us = mean(us);
         all_fcl.insert(all_fcl.end(), us.begin(), us.end());
         r.ratio = r.fcl_median_us / r.median_us;
         r.fcl_triangles = ma.triangles + mb.triangles, r.fcl_bv_nodes = ma.bv_nodes + mb.bv_nodes;
@@ -423,8 +415,11 @@ class Runner {
     BenchRecord& t = total;
     t.experiment = "motion", t.pair = "all", t.eps = eps, t.tol = 2 * eps;
     set_counters(t, all);
-    t.proven_median_us = percentile(all_proven.us, 0.5), t.proven_p90_us = percentile(all_proven.us, 0.9);
-    t.fcl_median_us = percentile(all_fcl, 0.5), t.fcl_p90_us = percentile(all_fcl, 0.9), t.fcl_mean_us = mean(all_fcl);
+    t.proven_median_us = nearest_rank_percentile(all_proven.us, 0.5);
+    t.proven_p90_us = nearest_rank_percentile(all_proven.us, 0.9);
+    t.fcl_median_us = nearest_rank_percentile(all_fcl, 0.5);
+    t.fcl_p90_us = nearest_rank_percentile(all_fcl, 0.9);
+    t.fcl_mean_us = mean(all_fcl);
     t.ratio = t.fcl_median_us / t.median_us;
     records.push_back(t);
   }

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "compare/mesh_fcl.h"
+#include "compare/thread_clock.h"
 #include "compare/run_info.h"
 #include "compare/svg_plot.h"
 #include "core/case_io.h"
@@ -25,12 +26,6 @@ namespace {
 
 using Json = nlohmann::json;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double thread_cpu_us() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
 
 double percentile(std::vector<double> v, double q) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());

@@ -1,6 +1,7 @@
 // Inscribed meshes of solids of revolution and FCL 0.7 mesh-mesh distance (the
 // baseline of `revdist compare` and `revdist bench`; NOTES.md section 5).
 #include "compare/mesh_fcl.h"
+#include "compare/thread_clock.h"
 
 #include <fcl/fcl.h>
 #include <time.h>
@@ -52,12 +53,6 @@ std::vector<double> piece_breaks(const Piece& piece, double eps) {
   };
   split(u0, u1, 0);
   return us;
-}
-
-double thread_cpu_us() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
 }
 
 fcl::Transform3d transform(const Mat3& R, const Vec3& t) {

@@ -27,6 +27,7 @@
 
 #include "compare/bench_paper.h"
 #include "compare/motion.h"
+#include "compare/thread_clock.h"
 #include "core/case_io.h"
 #include "fast/biarc_tree.h"
 #include "fast/solid_distance.h"
@@ -34,18 +35,6 @@
 using namespace revdist;
 
 namespace {
-
-double cpu_us() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-double pct(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))];
-}
 
 // One frame as stored: pair indices and the two poses (rotation, translation).
 struct FramePose {
@@ -134,9 +123,9 @@ int main(int argc, char** argv) {
       PosedSolid A{&profiles[p.a], &trees[p.a]}, B{&profiles[p.b], &trees[p.b]};
       A.R = Eigen::Map<const Mat3>(p.Ra), A.t = Eigen::Map<const Vec3>(p.ta);
       B.R = Eigen::Map<const Mat3>(p.Rb), B.t = Eigen::Map<const Vec3>(p.tb);
-      const double c0 = cpu_us();
+      const double c0 = thread_cpu_us();
       const SolidDistanceResult r = solid_distance(A, B, o);
-      const double dt = cpu_us() - c0;
+      const double dt = thread_cpu_us() - c0;
       if (rep > 0) continue;
       us.push_back(dt);
       if (p.target < 0) over_us.push_back(dt);
@@ -177,11 +166,11 @@ int main(int argc, char** argv) {
   }
   const double n = static_cast<double>(us.size());
   printf("queries %zu eps %g tol %g: median %.1f us p90 %.1f p99 %.1f mean %.1f | overlap frames %zu median %.1f p99 %.1f\n",
-         us.size(), eps, tol, pct(us, 0.5), pct(us, 0.9), pct(us, 0.99), [&] {
+         us.size(), eps, tol, nearest_rank_percentile(us, 0.5), nearest_rank_percentile(us, 0.9), nearest_rank_percentile(us, 0.99), [&] {
            double s = 0;
            for (double u : us) s += u;
            return s / n;
-         }(), over_us.size(), pct(over_us, 0.5), pct(over_us, 0.99));
+         }(), over_us.size(), nearest_rank_percentile(over_us, 0.5), nearest_rank_percentile(over_us, 0.99));
   printf("per query: node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f refined %.1f; overlaps %d unconverged %d\n",
          sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
          sum.refined / n, overlaps, unconverged);

@@ -13,6 +13,7 @@
 
 #include "compare/brute_force.h"
 #include "compare/run_info.h"
+#include "compare/thread_clock.h"
 #include "core/case_io.h"
 #include "exact/circle_distance_exact.h"
 #include "exact/solid_distance_exact.h"
@@ -24,12 +25,6 @@ namespace {
 
 using Json = nlohmann::json;
 constexpr double kEpsMachine = std::numeric_limits<double>::epsilon();
-
-double thread_cpu_s() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 // What one case showed.
 struct Outcome {
@@ -337,13 +332,13 @@ StressReport run_stress(const std::vector<std::string>& families, long n, std::u
     FamilyStats f;
     f.name = name;
     f.circle = name.rfind("circle_", 0) == 0;
-    const double t0 = thread_cpu_s();
+    const double t0 = 1e-6 * thread_cpu_us();
     for (long i = shard_k - 1; i < n; i += shard_m) {
       const StressCase c = make_stress_case(name, i, seed);
       add_outcome(&f, c, c.is_circle ? check_circle(c, options, engines) : check_solid(c, options, engines));
       if (progress) progress(++done, total);
     }
-    f.time_s = thread_cpu_s() - t0;
+    f.time_s = 1e-6 * thread_cpu_us() - t0;
     rep.families.push_back(std::move(f));
   }
   return rep;
