@@ -350,7 +350,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // of the adjacent span too, so a neighbour pair's bound also bounds that
   // circle's sub-problems against the same other fit.
   struct FitBound {
-    const BiarcFit a, b;
+    std::int32_t a, b;  // parts of A and B (their fits)
     double lb;
   };
   std::vector<FitBound> fit_bounds;
@@ -362,8 +362,9 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // that pair has not been compared. mine_is_a: which side `mine` is on.
   auto neighbour_bound = [&](const BiarcFit& mine, int dir, const BiarcFit& other, bool mine_is_a) {
     for (const FitBound& f : fit_bounds) {
-      const BiarcFit& n = mine_is_a ? f.a : f.b;
-      if (!same(mine_is_a ? f.b : f.a, other) || n.piece != mine.piece) continue;
+      const BiarcFit &fa = A.parts[f.a].fit, &fb = B.parts[f.b].fit;
+      const BiarcFit& n = mine_is_a ? fa : fb;
+      if (!same(mine_is_a ? fb : fa, other) || n.piece != mine.piece) continue;
       if (dir == 0 ? n.u1 != mine.u0 : n.u0 != mine.u1) continue;
       const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
       return f.lb - gap;
@@ -528,7 +529,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           offer(A.true_point(fa, xc), B.true_point(fb, xc));
       }
     }
-    fit_bounds.push_back({fa, fb, fit_lb});
+    fit_bounds.push_back({e.a, e.b, fit_lb});
     if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;
