@@ -136,7 +136,8 @@ std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q, d
 // when one of them is in the arc's angular window. A ball (x, r) of points
 // projects into a disk of radius r (the map to (r, z) is 1-Lipschitz), whose
 // directions from c are within asin(r / |q - c|) of q's: the ball can hold the
-// other end of such a line only if that cone meets the double window.
+// other end of such a line only if that cone, from q or from its mirror
+// image across the axis, meets the double window.
 struct GaussWindow {
   const Patch* T;
   Vec2 mid;            // unit direction of the window's middle
@@ -150,14 +151,22 @@ GaussWindow gauss_window(const Patch& T) {
 }
 bool gauss_keep(const void* ctx, const Vec3& x, double r) {
   const GaussWindow& g = *static_cast<const GaussWindow*>(ctx);
-  const Vec2 v = patch_local(*g.T, x) - g.T->c;
-  const double len = v.norm();
+  const Vec2 q = patch_local(*g.T, x);
   const double slack = 1e-9;  // directions: generous against rounding
-  if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;
-  const double sd = r / len, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
-  const double cos_lim = g.cos_h * cd - g.sin_h * sd;  // cos(half + delta)
-  if (cos_lim <= slack) return true;                    // the cone spans a right angle or more
-  return std::abs(v.dot(g.mid)) / len >= cos_lim - slack;
+  // The normal line lies in a whole meridian plane: past T's axis it runs
+  // through the opposite half-plane, where a point's (rho, z) is the mirror
+  // (-rho, z) of its place on the line. So the ball may hold an end of such
+  // a line at q or at its mirror.
+  for (const Vec2 qs : {q, Vec2(-q.x(), q.y())}) {
+    const Vec2 v = qs - g.T->c;
+    const double len = v.norm();
+    if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;
+    const double sd = r / len, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
+    const double cos_lim = g.cos_h * cd - g.sin_h * sd;  // cos(half + delta)
+    if (cos_lim <= slack) return true;                    // the cone spans a right angle or more
+    if (std::abs(v.dot(g.mid)) / len >= cos_lim - slack) return true;
+  }
+  return false;
 }
 
 // Lines normal to torus patch T's major circle at m: the line from m along w, and
@@ -592,9 +601,11 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // Boxes carry the cosines and sines of their middle angles (azimuth, and
   // the arc's angle at the middle profile fraction), updated by angle
   // addition with the half-widths of each level, computed once a level.
-  struct Box { double um, du, cu, su, tm, dt, ct, st; int lu, lt; };
+  // Best first (smallest bound of the parent box): a point closer than the
+  // cut, which ends the proof, is met soonest. The sectors come first.
+  struct Box { double key, um, du, cu, su, tm, dt, ct, st; int lu, lt; };
   struct HalfAngle { double c, s; };
-  HalfAngle hu[64], ht[64];  // level k: half of the level's half-width (depth < 64: the stack)
+  HalfAngle hu[64], ht[64];  // level k: half of the level's half-width
   int nu = 0, nt = 0;
   constexpr int kSectors = 8;
   auto half_angle = [](HalfAngle* table, int* filled, int level, double half0) {
@@ -605,7 +616,9 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     }
     return table[level];
   };
-  Box stack[64];
+  constexpr int kOpen = 256;
+  Box open[kOpen];
+  auto later = [](const Box& x, const Box& y) { return x.key > y.key; };
   int n = 0, evals = 0;
   auto done = [&](bool ok) {
     if (evals_out) *evals_out = evals;
@@ -615,14 +628,15 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   const double cu0 = std::cos(0.5 * sweep), su0 = std::sin(0.5 * sweep);
   for (int k = kSectors - 1; k >= 0; --k) {
     const double tm = -M_PI + (k + 0.5) * (2 * M_PI / kSectors);
-    stack[n++] = {0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
+    open[n++] = {-std::numeric_limits<double>::infinity(), 0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
   }
   double least = std::numeric_limits<double>::infinity();
   while (n > 0) {
-    const Box b = stack[--n];
+    std::pop_heap(open, open + n, later);
+    const Box b = open[--n];
     if (++evals > budget) return done(false);
     const double du = b.du, dt = b.dt;
-    Vec2 q, qu;
+    Vec2 q, qu, quu(0, 0);
     if (P.straight) {
       qu = P.p1 - P.p0;
       q = P.p0 + b.um * qu;
@@ -630,6 +644,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       const Vec2 d(b.cu * P.d0.x() - b.su * P.d0.y(), b.su * P.d0.x() + b.cu * P.d0.y());
       q = P.c + P.rho * d;
       qu = P.rho * P.sweep * Vec2(-d.y(), d.x());
+      quu = -P.rho * P.sweep * P.sweep * d;
     }
     const bool clamped = q.x() < 0;
     q.x() = std::max(q.x(), 0.0);
@@ -647,6 +662,17 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
     const double a = len * du + rmax * dt;
     const double rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+    // The signed form: x's second derivatives at the centre (x_uu, x_ut,
+    // x_tt) and how far they move over the box (x3: |x''(s) - x''(0)| along
+    // any path of the box; |q'''| = curv |sweep|, |e(t) - e(tm)| <= dt).
+    const Vec3 xuu = quu.x() * er + quu.y() * P.a, xut = qu.x() * et, xtt = -q.x() * er;
+    const double sw = std::abs(sweep);
+    const double x3 = curv * (sw * du + dt) * du * du + 2 * (curv * du + len * dt) * du * dt + (len * du + rmax * dt) * dt * dt;
+    // min over |d| <= w of G d + m d^2 / 2.
+    auto edge = [](double G, double m, double w) {
+      if (m > 0 && std::abs(G) < m * w) return -0.5 * G * G / m;
+      return -std::abs(G) * w + 0.5 * m * w * w;
+    };
     double lb = std::numeric_limits<double>::infinity();
     double truth = lb;  // the distance from x itself to Q's patch
     // A piece of value f, unit gradient grad (in Q's (rho, z)) and a lower
@@ -658,14 +684,30 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     // Hessian of a function of (rho, z) is its plane Hessian plus f_rho / rho
     // about the axis, and the plane Hessian of a distance to a point is
     // positive semi-definite, of |n . q - off| zero.
-    auto piece = [&](double f, const Vec2& grad, double lam) {
+    //
+    // Where the piece is C2 over the ball with |Hessian| <= H2 (its gradient
+    // then moves by at most H2 r), the curvature of P enters with its sign:
+    // along a path of the box, phi'' >= lam a^2 + g . x''(centre) - H2 r |x''|
+    // - x3, and g . x''(centre) is the quadratic form (g.x_uu, g.x_ut, g.x_tt)
+    // in the path's (du, dt); with the first-order terms its minimum over the
+    // box separates into u and t (the cross term bounded by its size). A
+    // surface curving away from Q (g . x_tt > 0 at a convex contact) then
+    // pays G^2 / 2m rather than |G| times the box.
+    auto piece = [&](double f, const Vec2& grad, double lam, double H2) {
       double bound = f - r;
       if (bound - margin < cut && smooth_box && !std::isnan(lam)) {
         const Vec3 g = grad.x() * erq + grad.y() * Q.a;
-        bound = std::max(bound, f - std::abs(g.dot(xu)) * du - std::abs(g.dot(xt)) * dt + 0.5 * lam * a * a - rest);
+        const double Gu = g.dot(xu), Gt = g.dot(xt);
+        bound = std::max(bound, f - std::abs(Gu) * du - std::abs(Gt) * dt + 0.5 * lam * a * a - rest);
+        if (std::isfinite(H2)) {
+          const double signed_bound = f + edge(Gu, g.dot(xuu), du) + edge(Gt, g.dot(xtt), dt) -
+                                      std::abs(g.dot(xut)) * du * dt + 0.5 * lam * a * a - H2 * r * rest - 0.5 * x3;
+          bound = std::max(bound, signed_bound);
+        }
       }
       lb = std::min(lb, bound - margin);
     };
+    const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // f_rho / rho for the distance to a point at radius pr of Q's half-plane,
     // over the ball (f >= f_min, rho >= rho_min > 0): f_rho = (rho - pr) / f.
@@ -679,7 +721,8 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       truth = std::min(truth, f);
       // A pole (pr = 0) is a point: smooth wherever f > 0.
       const bool smooth = f - r > 0 && (pe.x() <= 0 || rho_min > 0);
-      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan);
+      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan,
+            smooth ? 1.0 / (f - r) + (pe.x() <= 0 ? 0.0 : 1.0 / rho_min) : inf);
     }
     if (Q.straight) {
       if (seg_len > 0) {
@@ -689,7 +732,8 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
           // Hessian sign(s) n_r / rho about the axis.
           const double nr = s >= 0 ? Q.n.x() : -Q.n.x();
           const bool smooth = nr >= 0 || rho_min > 0;
-          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan);
+          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan,
+                Q.n.x() == 0 ? 0.0 : rho_min > 0 ? std::abs(Q.n.x()) / rho_min : inf);
         }
       }
     } else {
@@ -714,7 +758,8 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
           if (s > 0) lam = Q.c.x() == 0 ? 0.0 : azimuthal(Q.c.x(), D_min);
           else lam = -1.0 / D_min - (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
         }
-        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam);
+        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam,
+              smooth ? 1.0 / D_min + (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min) : inf);
       }
     }
     if (truth < cut) return done(false);  // a point of P is closer: not provable
@@ -725,17 +770,21 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     // A box this small that still does not clear sits at a minimum within
     // rounding of the cut: no box will clear it.
     if (r <= 1e-9 * (rmax + len) || truth - cut <= 1e-12 * (rmax + len)) return done(false);
-    if (n + 2 > 64) return done(false);
+    if (n + 2 > kOpen || b.lu >= 63 || b.lt >= 63) return done(false);
     if (prof >= azi) {
       const HalfAngle h = half_angle(hu, &nu, b.lu, 0.5 * sweep);
-      for (double sgn : {-1.0, 1.0})
-        stack[n++] = {b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
-                      b.tm, dt, ct, st, b.lu + 1, b.lt};
+      for (double sgn : {-1.0, 1.0}) {
+        open[n++] = {lb, b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
+                     b.tm, dt, ct, st, b.lu + 1, b.lt};
+        std::push_heap(open, open + n, later);
+      }
     } else {
       const HalfAngle h = half_angle(ht, &nt, b.lt, M_PI / kSectors);
-      for (double sgn : {-1.0, 1.0})
-        stack[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
-                      st * h.c + sgn * ct * h.s, b.lu, b.lt + 1};
+      for (double sgn : {-1.0, 1.0}) {
+        open[n++] = {lb, b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
+                     st * h.c + sgn * ct * h.s, b.lu, b.lt + 1};
+        std::push_heap(open, open + n, later);
+      }
     }
   }
   *lower = least;

@@ -302,6 +302,40 @@ TEST(PatchCrossingPoint, OnBothPatchesWhenTheyCross) {
   EXPECT_GE(found, trials / 2);
 }
 
+// A regression (seed 13 of the test above, trial 102): a small torus patch A
+// inside the tube of a nearly flat one B (arc radius 13.8 about a major
+// circle of radius 12.1). Their closest pair lies on a binormal of the major
+// circles whose far end, seen from A's axis, is in the opposite half of A's
+// meridian plane; the Gauss-window filter compared that end's mirrored
+// (rho, z) with A's window, dropped the line and answered 0.97077, above
+// the true distance (a dense grid: 0.9622053, and that grid is above the truth).
+TEST(PatchPairRegression, BinormalAcrossTheAxisIsNotDroppedByTheGaussWindow) {
+  Patch A, B;
+  A.o = Vec3(0.85289823629711448, -0.73377153009511642, -0.62444947919948568);
+  A.a = Vec3(0.37024637390745452, 0.087429242137293348, -0.92481011576846406);
+  A.p0 = Vec2(0.60671765438186009, -0.79501770129099769);
+  A.p1 = Vec2(0.18939154953870097, -1.2611640905791996);
+  A.c = Vec2(0.21354169077749952, -0.8629023279516318);
+  A.rho = 0.39899330933371696;
+  A.d0 = Vec2(0.98541994165498459, 0.17013976192732491);
+  A.sweep = -1.8023325280112419;
+  B.o = Vec3(1.9912584292480096, -0.44407763686625412, 1.7184210069024402);
+  B.a = Vec3(-0.13062506220203271, -0.99084640938200941, -0.034065908757795915);
+  B.p0 = Vec2(0.91047917565380132, -0.46323493670690719);
+  B.p1 = Vec2(0.64635129721672091, -0.088866558209246146);
+  B.c = Vec2(12.09118036267343, 7.7054370695449865);
+  B.rho = 13.846850955330799;
+  B.d0 = Vec2(-0.80745443300342967, -0.58992994382647668);
+  B.sweep = -0.033089542224812016;
+  const PatchPairResult r = patch_pair_distance(A, B);
+  ASSERT_TRUE(r.separated);
+  EXPECT_LE(r.upper, 0.9622053);
+  // Nor may the local proof claim more than that grid.
+  double lower = 0;
+  EXPECT_FALSE(patches_at_least(A, B, 0.9622053, 1e-14, 4096, &lower));
+  EXPECT_FALSE(patches_at_least(B, A, 0.9622053, 1e-14, 4096, &lower));
+}
+
 // The local proof (patches_at_least) against the enumeration's distance of
 // separated pairs (itself checked against brute force above): never a bound
 // above the truth, never "proven" for a cut above it, always "not proven" for
