@@ -180,8 +180,72 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
     vlen = nl;
     if (n == 4) return res;  // a tetrahedron around a point that is not the origin: cannot be closest
   }
-  // The bound along u = v (not normalised; divided by |u| below).
-  const Vec3 u = v;
+  // The bound along u (not normalised; divided by |u| below). v is the
+  // difference of two hull points, each rounded to ulps of the frusta's
+  // extent S, so its direction is off by ~eps S / |v|; where a support ties
+  // both end circles (the closest point inside a generator: cans side by
+  // side) that costs the bound first order, S eps S / |v|. Every direction
+  // gives a valid bound, so v is also tried with its component along each
+  // axis set so that it is normal to that cone's generator at the support,
+  // which removes that first-order term; the best candidate is kept.
+  auto gap_along = [&](const Vec3& d) { return (-support(fa, -d) - support(fb, d)) / d.norm(); };
+  // The generator at the support of f in direction s * d is normal to d when
+  // d . a = -s |d_perp| t_r / t_z ((t_r, t_z) the segment's direction).
+  auto normal_to = [](const Patch& P, const Vec3& d, double s) {
+    const Vec2 t = P.p1 - P.p0;
+    if (!(std::abs(t.y()) > 0)) return d;
+    const Vec3 dp = d - d.dot(P.a) * P.a;
+    return Vec3(dp - s * dp.norm() * t.x() / t.y() * P.a);
+  };
+  // The hulls' closest points, moved onto the patches: an upper bound, and
+  // their difference another direction (the simplex's v loses digits to
+  // cancellation when the simplex is long and thin).
+  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
+  for (int j = 0; j < n; ++j) x += lam[j] * s[j].pa, y += lam[j] * s[j].pb;
+  res.x = onto_patch(A, x + shift);
+  res.y = onto_patch(B, y + shift);
+  res.upper = (res.x - res.y).norm();
+  Vec3 u = v;
+  double best = gap_along(u);
+  // Normal to both generators at once (closest points inside both, as for
+  // crossing cans): Newton in the span of the two axes on
+  // h_P(d) = d . a_P + s_P |d_perp,P| t_r / t_z = 0; alternating the single
+  // corrections above converges only at rate cos^2 of the axes' angle.
+  auto normal_to_both = [&](Vec3 d) {
+    const Vec2 ta = A.p1 - A.p0, tb = B.p1 - B.p0;
+    if (!(std::abs(ta.y()) > 0 && std::abs(tb.y()) > 0)) return d;
+    const double ka = -ta.x() / ta.y(), kb = tb.x() / tb.y();  // h_A = d.a_A - ka |..|, h_B = d.a_B - kb |..|
+    for (int it = 0; it < 3; ++it) {
+      const Vec3 pa = d - d.dot(A.a) * A.a, pb = d - d.dot(B.a) * B.a;
+      const double la = pa.norm(), lb = pb.norm();
+      if (!(la > 0 && lb > 0)) return d;
+      const double fa_ = d.dot(A.a) + ka * la, fb_ = d.dot(B.a) + kb * lb;
+      // d + al a_A + be b_B: derivatives of h_A, h_B in al and be.
+      const double c = A.a.dot(B.a);
+      const double j11 = 1, j12 = c + ka * pa.dot(B.a) / la;
+      const double j21 = c + kb * pb.dot(A.a) / lb, j22 = 1;
+      const double det = j11 * j22 - j12 * j21;
+      if (!(std::abs(det) > 1e-300)) return d;
+      const double al = -(fa_ * j22 - fb_ * j12) / det, be = -(j11 * fb_ - j21 * fa_) / det;
+      d += al * A.a + be * B.a;
+    }
+    return d;
+  };
+  // The cones' normals at the witnesses: their azimuths err by the
+  // witnesses' tangential error over the radius, not over the gap.
+  auto cone_normal = [](const Patch& P, const Vec3& p) {
+    Vec3 er;
+    patch_local(P, p, &er);
+    return Vec3(P.n.x() * er + P.n.y() * P.a);
+  };
+  const Vec3 na = cone_normal(A, res.x), nb = cone_normal(B, res.y);
+  for (const Vec3& base : {v, Vec3(res.x - res.y), na, Vec3(-na), nb, Vec3(-nb)})
+    for (const Vec3& c : {base, normal_to(A, base, -1), normal_to(B, base, 1), normal_to(B, normal_to(A, base, -1), 1),
+                          normal_to(A, normal_to(B, base, 1), -1), normal_to_both(base)}) {
+      if (!(c.squaredNorm() > 0)) continue;
+      const double gc = gap_along(c);
+      if (gc > best) best = gc, u = c;
+    }
   const double g = -support(fa, -u) - support(fb, u);
   // Rounding: each support value is a dot product and a norm of terms of at
   // most |u|_1 (|c| + r); the centres themselves are the patch's to a few
@@ -192,11 +256,6 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
   const double ulen = u.norm() * (1 + 4 * kEps);
   res.lower = (g - err) / ulen;
   if (res.lower > 0) res.lower *= 1 - 4 * kEps;
-  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
-  for (int j = 0; j < n; ++j) x += lam[j] * s[j].pa, y += lam[j] * s[j].pb;
-  res.x = onto_patch(A, x + shift);
-  res.y = onto_patch(B, y + shift);
-  res.upper = (res.x - res.y).norm();
   return res;
 }
 
