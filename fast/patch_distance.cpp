@@ -629,10 +629,11 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
     nonsmooth_points(c, false);
   }
   if (hull_lb > gtol) {
-    // Apart whatever the enumeration found; it may have missed the minimum
-    // (a degenerate normal system), so the hull bound stands beside it.
+    // Apart whatever the enumeration found. A complete enumeration is the
+    // distance; a degenerate one may have missed the minimum, so the hull
+    // bound stands beside it.
     c.res.separated = true;
-    c.res.lower_skipped = std::min(c.res.lower_skipped, hull_lb);
+    if (c.res.degenerate) c.res.lower_skipped = std::min(c.res.lower_skipped, hull_lb);
     return c.res;
   }
   c.res.separated = !c.res.degenerate && (!need_g || c.gb_min > gtol || c.gb_max < -gtol ||
