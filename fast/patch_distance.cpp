@@ -9,6 +9,7 @@
 
 #include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
+#include "fast/cone_hull.h"
 #include "fast/cone_normals.h"
 
 namespace revdist {
@@ -805,6 +806,27 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
   // The caller's bound (patch_pair_quick's) already includes the bounding tori.
   const double disk_lb = std::isfinite(known_lower) ? known_lower : patch_disk_bound(A, B);
   bool need_g = !(disk_lb > gtol);
+  // Two conical patches: their hulls' distance (fast/cone_hull.h) proves them
+  // apart and bounds them without normal lines, which nearly parallel axes
+  // make ill-conditioned; when the hulls' closest points lie on both lateral
+  // surfaces it is the distance, and the enumeration is not needed.
+  double hull_lb = -kInf;
+  if (A.straight && B.straight) {
+    const ConeHullResult h = cone_hull_distance(A, B);
+    if (h.lower > gtol) {
+      hull_lb = h.lower;
+      need_g = false;
+      if (h.upper - h.lower <= gtol) {
+        PatchPairResult r;
+        r.found = r.separated = true;
+        r.upper = h.upper;
+        r.x = h.x;
+        r.y = h.y;
+        r.lower_skipped = h.lower;
+        return r;
+      }
+    }
+  }
   if (need_g) {
     // The bounding tori meet: try the cheap proof that the patches are apart
     // (boxes of the smaller patch against the other's surface), else the sign
@@ -839,6 +861,14 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
   if (need_g) {
     nonsmooth_points(c, true);
     nonsmooth_points(c, false);
+  }
+  if (hull_lb > gtol) {
+    // Apart whatever the enumeration found. A complete enumeration is the
+    // distance; a degenerate one may have missed the minimum, so the hull
+    // bound stands beside it.
+    c.res.separated = true;
+    if (c.res.degenerate) c.res.lower_skipped = std::min(c.res.lower_skipped, hull_lb);
+    return c.res;
   }
   c.res.separated = !c.res.degenerate && (!need_g || c.gb_min > gtol || c.gb_max < -gtol ||
                                           c.ga_min > gtol || c.ga_max < -gtol);
