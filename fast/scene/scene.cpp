@@ -262,28 +262,26 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->nodes_built += unreported_nodes_;
   unreported_nodes_ = 0;
   // Per instance, independent (a deforming instance has a shape of its own),
-  // so spread over the threads; the results do not depend on their number.
+  // so spread over the threads in one pass; the results do not depend on their number.
   // A deforming shape is blended here; its tree waits for a query (build_stale).
   stale_.resize(size(), 0);
   parallel_section(st, [&] { return parallel_for(size(), options_.threads, [&](std::size_t i) {
-    if (motion_[i].time_rate == 0) return;
-    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
-    const SolidDef& def = solids_[shape.solid];
-    const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
-    if (t == shape.time) return;
-    shape.time = t;
-    shape.profile = profile_at(def, t);
-    cylinder_bounds(model_.shape_of[i]);
-    stale_[i] = 1;
-  }); });
-  parallel_section(st, [&] { return parallel_for(size(), options_.threads, [&](std::size_t i) {
-    if (f != 0 && !motion_[i].moving()) {
-      boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
-      return;
+    if (motion_[i].time_rate != 0) {
+      CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+      const SolidDef& def = solids_[shape.solid];
+      const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
+      if (t != shape.time) {
+        shape.time = t;
+        shape.profile = profile_at(def, t);
+        cylinder_bounds(model_.shape_of[i]);
+        stale_[i] = 1;
+      }
     }
-    const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
-    model_.instances[i].R = p.rotation();
-    model_.instances[i].t = p.translation;
+    if (f == 0 || motion_[i].moving()) {  // else the pose is unchanged (the box is recomputed: the shape may not be)
+      const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
+      model_.instances[i].R = p.rotation();
+      model_.instances[i].t = p.translation;
+    }
     boxes_[i] = world_box(i);
   }); });
   st->broad_rebuilt = !tree_.refit(boxes_);
