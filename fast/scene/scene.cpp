@@ -366,11 +366,10 @@ bool Scene::settle_from_memory(const PairMemory& m, double d, ScenePair* p) cons
   const Vec3 x = A.R * m.p_a + A.t, y = B.R * m.p_b + B.t;
   const double upper = (x - y).norm();
   if (!(upper <= d || lower > d)) return false;
-  // The slot may hold an older answer: every field is reset, the reason's storage kept.
+  // The slot may hold an older answer: every field is set (the reason keeps its storage).
   SolidDistanceResult& r = p->result;
-  std::string reason = std::move(r.reason);
-  r = SolidDistanceResult{};
-  r.reason = std::move(reason);
+  r.overlap = false;
+  r.stats = DistanceStats{};
   r.lower = std::min(lower, upper);
   r.upper = upper;
   r.distance = 0.5 * (r.lower + r.upper);
@@ -419,14 +418,16 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
     ScenePair& p = slots_[k];
     p.a = cand[k].first;
     p.b = cand[k].second;
-    // The remembered pair (memory_ is sorted by (a, b)), if any; a deforming
-    // shape's remembered witness points are no longer on its surface.
+    // The remembered pair, if any (among the few remembered with the same a);
+    // a deforming shape's remembered witness points are no longer on its surface.
     const PairMemory* old = nullptr;
-    if (options_.coherence && motion_[p.a].time_rate == 0 && motion_[p.b].time_rate == 0) {
-      const auto it = std::lower_bound(memory_.begin(), memory_.end(), cand[k],
-                                       [](const PairMemory& m, const PairKey& key) { return PairKey(m.a, m.b) < key; });
-      if (it != memory_.end() && PairKey(it->a, it->b) == cand[k] && it->valid) old = &*it;
-    }
+    if (options_.coherence && motion_[p.a].time_rate == 0 && motion_[p.b].time_rate == 0 &&
+        static_cast<std::size_t>(p.a) + 1 < memory_first_.size())
+      for (std::int32_t j = memory_first_[p.a]; j < memory_first_[p.a + 1]; ++j)
+        if (memory_keys_[j].second == p.b) {
+          if (memory_[j].valid) old = &memory_[j];
+          break;
+        }
     Counts& c = counts[w];
     if (old && settle_from_memory(*old, d, &p)) {
       ++c.coherent;
@@ -463,7 +464,6 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
     p.within = p.result.upper <= d;
     keep_[k] = !(p.result.lower > d);
   }); });
-  if (options_.coherence) std::swap(memory_, memory_next_);
   for (const Counts& c : counts) {
     st->pairs_coherent += c.coherent;
     st->narrow_calls += c.narrow_calls;
@@ -486,6 +486,18 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
   st->pairs_total += n * (n - 1) / 2;
   st->pairs_tested += static_cast<long>(cand.size());
   st->pairs_culled += n * (n - 1) / 2 - static_cast<long>(cand.size());
+  if (options_.coherence) {
+    // memory[k] is cand[k]'s: keep both, and where each a's pairs start (one
+    // sequential pass over the small keys, not a search through the big records).
+    std::swap(memory_, memory_next_);
+    std::swap(memory_keys_, cand_);
+    memory_first_.assign(size() + 1, 0);
+    std::size_t j = 0;
+    for (std::size_t a = 0; a <= size(); ++a) {
+      while (j < memory_keys_.size() && static_cast<std::size_t>(memory_keys_[j].first) < a) ++j;
+      memory_first_[a] = static_cast<std::int32_t>(j);
+    }
+  }
 }
 
 // Best-first over a stream of pairs in non-decreasing box gap. Batches have a

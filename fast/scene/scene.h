@@ -130,6 +130,8 @@ class Scene {
   std::vector<double> reach_;                    // per shape: max |local point| of the solid
   std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
   std::vector<PairMemory> memory_next_;          // storage for the next call's
+  std::vector<std::pair<std::int32_t, std::int32_t>> memory_keys_;  // memory_[k]'s (a, b)
+  std::vector<std::int32_t> memory_first_;       // per instance a: its first entry in memory_ (size n + 1)
   // within(d)'s scratch, kept across calls (warm storage; strings keep their capacity).
   std::vector<std::pair<std::int32_t, std::int32_t>> cand_;
   std::vector<ScenePair> slots_;
