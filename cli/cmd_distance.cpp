@@ -85,6 +85,7 @@ class FastEngine {
                          {"leaf_pairs", r.stats.leaf_pairs},
                          {"patch_pairs", r.stats.patch_pairs},
                          {"quick_pairs", r.stats.quick_pairs},
+                         {"local_pairs", r.stats.local_pairs},
                          {"refined_parts", r.stats.refined},
                          {"time_us", us}}}};
     if (!r.converged) a.json["reason"] = r.reason;

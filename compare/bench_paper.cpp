@@ -94,7 +94,7 @@ struct QueryTimes {
   std::vector<double> us;
   std::vector<double> overlap_us;  // frames planned to overlap
   std::vector<SolidDistanceResult> sample;  // results at the certified sample frames
-  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
+  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, local_pairs = 0, refined = 0;
   int overlaps = 0, unconverged = 0;
 };
 
@@ -105,7 +105,7 @@ void set_counters(BenchRecord& r, const QueryTimes& q) {
   r.p90_us = nearest_rank_percentile(q.us, 0.9);
   r.mean_us = mean(q.us);
   r.node_pairs = q.node_pairs / n, r.leaf_pairs = q.leaf_pairs / n, r.patch_pairs = q.patch_pairs / n;
-  r.quick_pairs = q.quick_pairs / n, r.refined = q.refined / n;
+  r.quick_pairs = q.quick_pairs / n, r.local_pairs = q.local_pairs / n, r.refined = q.refined / n;
   r.overlaps = q.overlaps, r.unconverged = q.unconverged;
   r.planned_overlaps = static_cast<int>(q.overlap_us.size());
   r.overlap_median_us = nearest_rank_percentile(q.overlap_us, 0.5);
@@ -127,7 +127,7 @@ QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::funct
     q.us.push_back(thread_cpu_us() - c0);
     if (frames[j].target < 0) q.overlap_us.push_back(q.us.back());
     q.node_pairs += r.stats.node_pairs, q.leaf_pairs += r.stats.leaf_pairs, q.patch_pairs += r.stats.patch_pairs;
-    q.quick_pairs += r.stats.quick_pairs, q.refined += r.stats.refined;
+    q.quick_pairs += r.stats.quick_pairs, q.local_pairs += r.stats.local_pairs, q.refined += r.stats.refined;
     q.overlaps += r.overlap, q.unconverged += !r.converged;
     if (next < sample.size() && sample[next] == j) q.sample.push_back(r), ++next;
   }
@@ -428,7 +428,7 @@ class Runner {
     into.us.insert(into.us.end(), q.us.begin(), q.us.end());
     into.overlap_us.insert(into.overlap_us.end(), q.overlap_us.begin(), q.overlap_us.end());
     into.node_pairs += q.node_pairs, into.leaf_pairs += q.leaf_pairs, into.patch_pairs += q.patch_pairs;
-    into.quick_pairs += q.quick_pairs, into.refined += q.refined;
+    into.quick_pairs += q.quick_pairs, into.local_pairs += q.local_pairs, into.refined += q.refined;
     into.overlaps += q.overlaps, into.unconverged += q.unconverged;
   }
 

@@ -61,7 +61,7 @@ struct BenchRecord {
   long bytes = 0;
   long fcl_triangles = 0, fcl_bv_nodes = 0, fcl_bytes = 0;
   // Work counters, means per revdist query.
-  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, refined = 0;
+  double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, local_pairs = 0, refined = 0;
   int overlaps = 0;        // frames revdist proved overlapping
   // Frames planned to overlap slightly (negative gap): how many, and revdist's
   // time on them (the "overlap proven in <= 50 us for 99 %").

@@ -316,14 +316,15 @@ void motion_md(std::string& md, const BenchResult& r) {
         "FCL time the same frames in the same run. Times are thread CPU microseconds per query.\n\n";
   for (double eps : r.options.eps) {
     md += "### eps " + eps_label(eps) + "\n\n| pair | median | p90 | proven median | proven p90 | FCL median | FCL p90 | "
-          "FCL / revdist | node pairs | leaf pairs | patch pairs | overlaps proven / planned | p99 on planned | FCL zero | "
-          "unconverged |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "FCL / revdist | node pairs | leaf pairs | local proofs | enumerations | overlaps proven / planned | p99 on planned | "
+          "FCL zero | unconverged |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const BenchRecord* x : select(r, "motion", eps)) {
       md += "| " + (x->pair == "all" ? "**all**" : x->pair) + " | " + fmt("%.4g", x->median_us) + " | " +
             fmt("%.4g", x->p90_us) + " | " + fmt("%.4g", x->proven_median_us) + " | " +
             fmt("%.4g", x->proven_p90_us) + " | " + fmt("%.4g", x->fcl_median_us) + " | " +
             fmt("%.4g", x->fcl_p90_us) + " | " + fmt("%.3g", x->ratio) + " | " + fmt("%.1f", x->node_pairs) + " | " +
-            fmt("%.1f", x->leaf_pairs) + " | " + fmt("%.1f", x->patch_pairs) + " | " + std::to_string(x->overlaps) +
+            fmt("%.1f", x->leaf_pairs) + " | " + fmt("%.1f", x->local_pairs) + " | " + fmt("%.1f", x->patch_pairs) + " | " +
+            std::to_string(x->overlaps) +
             " / " + std::to_string(x->planned_overlaps) + " | " + fmt("%.4g", x->overlap_p99_us) + " | " +
             std::to_string(x->fcl_zero) + " | " + std::to_string(x->unconverged) + " |\n";
     }
@@ -418,6 +419,7 @@ std::string bench_json(const BenchResult& r) {
                         {"leaf_pairs", x.leaf_pairs},
                         {"patch_pairs", x.patch_pairs},
                         {"quick_pairs", x.quick_pairs},
+                        {"local_pairs", x.local_pairs},
                         {"refined", x.refined},
                         {"overlaps", x.overlaps},
                         {"planned_overlaps", x.planned_overlaps},

@@ -9,6 +9,7 @@
 
 #include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
+#include "fast/cone_hull.h"
 #include "fast/cone_normals.h"
 
 namespace revdist {
@@ -136,7 +137,8 @@ std::vector<CircleBinormal> binormal_lines(const Circle3& p, const Circle3& q, d
 // when one of them is in the arc's angular window. A ball (x, r) of points
 // projects into a disk of radius r (the map to (r, z) is 1-Lipschitz), whose
 // directions from c are within asin(r / |q - c|) of q's: the ball can hold the
-// other end of such a line only if that cone meets the double window.
+// other end of such a line only if that cone, from q or from its mirror
+// image across the axis, meets the double window.
 struct GaussWindow {
   const Patch* T;
   Vec2 mid;            // unit direction of the window's middle
@@ -150,14 +152,22 @@ GaussWindow gauss_window(const Patch& T) {
 }
 bool gauss_keep(const void* ctx, const Vec3& x, double r) {
   const GaussWindow& g = *static_cast<const GaussWindow*>(ctx);
-  const Vec2 v = patch_local(*g.T, x) - g.T->c;
-  const double len = v.norm();
+  const Vec2 q = patch_local(*g.T, x);
   const double slack = 1e-9;  // directions: generous against rounding
-  if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;
-  const double sd = r / len, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
-  const double cos_lim = g.cos_h * cd - g.sin_h * sd;  // cos(half + delta)
-  if (cos_lim <= slack) return true;                    // the cone spans a right angle or more
-  return std::abs(v.dot(g.mid)) / len >= cos_lim - slack;
+  // The normal line lies in a whole meridian plane: past T's axis it runs
+  // through the opposite half-plane, where a point's (rho, z) is the mirror
+  // (-rho, z) of its place on the line. So the ball may hold an end of such
+  // a line at q or at its mirror.
+  for (const Vec2 qs : {q, Vec2(-q.x(), q.y())}) {
+    const Vec2 v = qs - g.T->c;
+    const double len = v.norm();
+    if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;
+    const double sd = r / len, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
+    const double cos_lim = g.cos_h * cd - g.sin_h * sd;  // cos(half + delta)
+    if (cos_lim <= slack) return true;                    // the cone spans a right angle or more
+    if (std::abs(v.dot(g.mid)) / len >= cos_lim - slack) return true;
+  }
+  return false;
 }
 
 // Lines normal to torus patch T's major circle at m: the line from m along w, and
@@ -557,6 +567,231 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   return true;
 }
 
+bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
+                      int* evals_out) {
+  // The distance from x to Q's patch is the least of up to three pieces, each
+  // a smooth function of x away from Q's axis: the distances to Q's two end
+  // circles (|q - p_i| in Q's half-plane) and, where x's direction from the
+  // arc's centre (or its projection on the segment's line) lies in the arc
+  // (segment), the distance to the arc's circle | |q - c| - rho | (the line's
+  // |n . q - off|). Over a ball (x, r) the direction moves by at most
+  // asin(r / |q - c|) and the projection by r, so a piece left out at the
+  // centre stays out over the box when its window test fails with that slack;
+  // the least of the pieces kept bounds the distance below. Each piece is
+  // 1-Lipschitz (first order: f(x) - r) and, where smooth, has gradient norm 1
+  // and a Hessian bounded as in patches_apart (1/D for the distance to a point
+  // of Q's half-plane, plus 1/rho about Q's axis; |n_r|/rho for the line), which
+  // gives the second-order bound of patches_apart.
+  Vec3 e1, e2;
+  axis_frame(P, &e1, &e2);
+  const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
+  const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
+  const double curv = P.straight ? 0.0 : len * len / P.rho;  // |x_uu|
+  // Q's window: the arc's middle direction and half-width, or the segment.
+  double cos_h = 1, sin_h = 0, seg_len = 0;
+  Vec2 mid(1, 0), dir(1, 0);
+  if (Q.straight) {
+    seg_len = (Q.p1 - Q.p0).norm();
+    if (seg_len > 0) dir = (Q.p1 - Q.p0) / seg_len;
+  } else {
+    const double half = 0.5 * std::abs(Q.sweep), h = 0.5 * Q.sweep;
+    mid = Vec2(std::cos(h) * Q.d0.x() - std::sin(h) * Q.d0.y(), std::sin(h) * Q.d0.x() + std::cos(h) * Q.d0.y());
+    cos_h = std::cos(half);
+    sin_h = std::sin(half);
+  }
+  // Boxes carry the cosines and sines of their middle angles (azimuth, and
+  // the arc's angle at the middle profile fraction), updated by angle
+  // addition with the half-widths of each level, computed once a level.
+  // Best first (smallest bound of the parent box): a point closer than the
+  // cut, which ends the proof, is met soonest. The sectors come first.
+  struct Box { double key, um, du, cu, su, tm, dt, ct, st; int lu, lt; };
+  struct HalfAngle { double c, s; };
+  HalfAngle hu[64], ht[64];  // level k: half of the level's half-width
+  int nu = 0, nt = 0;
+  constexpr int kSectors = 8;
+  auto half_angle = [](HalfAngle* table, int* filled, int level, double half0) {
+    while (*filled <= level) {
+      const double h = std::ldexp(half0, -(*filled + 1));
+      table[*filled] = {std::cos(h), std::sin(h)};
+      ++*filled;
+    }
+    return table[level];
+  };
+  constexpr int kOpen = 256;
+  Box open[kOpen];
+  auto later = [](const Box& x, const Box& y) { return x.key > y.key; };
+  int n = 0, evals = 0;
+  auto done = [&](bool ok) {
+    if (evals_out) *evals_out = evals;
+    return ok;
+  };
+  const double sweep = P.straight ? 0.0 : P.sweep;
+  const double cu0 = std::cos(0.5 * sweep), su0 = std::sin(0.5 * sweep);
+  for (int k = kSectors - 1; k >= 0; --k) {
+    const double tm = -M_PI + (k + 0.5) * (2 * M_PI / kSectors);
+    open[n++] = {-std::numeric_limits<double>::infinity(), 0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
+  }
+  double least = std::numeric_limits<double>::infinity();
+  while (n > 0) {
+    std::pop_heap(open, open + n, later);
+    const Box b = open[--n];
+    if (++evals > budget) return done(false);
+    const double du = b.du, dt = b.dt;
+    Vec2 q, qu, quu(0, 0);
+    if (P.straight) {
+      qu = P.p1 - P.p0;
+      q = P.p0 + b.um * qu;
+    } else {
+      const Vec2 d(b.cu * P.d0.x() - b.su * P.d0.y(), b.su * P.d0.x() + b.cu * P.d0.y());
+      q = P.c + P.rho * d;
+      qu = P.rho * P.sweep * Vec2(-d.y(), d.x());
+      quu = -P.rho * P.sweep * P.sweep * d;
+    }
+    const bool clamped = q.x() < 0;
+    q.x() = std::max(q.x(), 0.0);
+    const double ct = b.ct, st = b.st;
+    const Vec3 er = ct * e1 + st * e2, et = ct * e2 - st * e1;
+    const Vec3 x = P.o + q.x() * er + q.y() * P.a;
+    const double prof = du * len, azi = dt * rmax;
+    const double r = prof + azi;  // every point of the box is within r of x
+    Vec3 erq;
+    const Vec2 qq = patch_local(Q, x, &erq);
+    const double rho_min = qq.x() - r;  // distance to Q's axis over the ball
+    // The second-order terms that do not depend on the piece: |grad f| = 1
+    // times x's second derivatives along the box, and x's first ones.
+    const bool smooth_box = !clamped && q.x() - prof >= 0;
+    const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
+    const double a = len * du + rmax * dt;
+    const double rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+    // The signed form: x's second derivatives at the centre (x_uu, x_ut,
+    // x_tt) and how far they move over the box (x3: |x''(s) - x''(0)| along
+    // any path of the box; |q'''| = curv |sweep|, |e(t) - e(tm)| <= dt).
+    const Vec3 xuu = quu.x() * er + quu.y() * P.a, xut = qu.x() * et, xtt = -q.x() * er;
+    const double sw = std::abs(sweep);
+    const double x3 = curv * (sw * du + dt) * du * du + 2 * (curv * du + len * dt) * du * dt + (len * du + rmax * dt) * dt * dt;
+    // min over |d| <= w of G d + m d^2 / 2.
+    auto edge = [](double G, double m, double w) {
+      if (m > 0 && std::abs(G) < m * w) return -0.5 * G * G / m;
+      return -std::abs(G) * w + 0.5 * m * w * w;
+    };
+    double lb = std::numeric_limits<double>::infinity();
+    double truth = lb;  // the distance from x itself to Q's patch
+    // A piece of value f, unit gradient grad (in Q's (rho, z)) and a lower
+    // bound lam <= 0 on its Hessian's eigenvalues over the ball (NaN: not
+    // smooth there). For the circle's and the line's pieces f = |s| >= sign(s(x)) s,
+    // and the second-order bound is that of the smooth sign(s(x)) s (s may
+    // change sign in the box: the bound is then below 0). Only a lower bound on f is wanted, so only the Hessian's
+    // negative part counts: in cylindrical coordinates about Q's axis the
+    // Hessian of a function of (rho, z) is its plane Hessian plus f_rho / rho
+    // about the axis, and the plane Hessian of a distance to a point is
+    // positive semi-definite, of |n . q - off| zero.
+    //
+    // Where the piece is C2 over the ball with |Hessian| <= H2 (its gradient
+    // then moves by at most H2 r), the curvature of P enters with its sign:
+    // along a path of the box, phi'' >= lam a^2 + g . x''(centre) - H2 r |x''|
+    // - x3, and g . x''(centre) is the quadratic form (g.x_uu, g.x_ut, g.x_tt)
+    // in the path's (du, dt); with the first-order terms its minimum over the
+    // box separates into u and t (the cross term bounded by its size). A
+    // surface curving away from Q (g . x_tt > 0 at a convex contact) then
+    // pays G^2 / 2m rather than |G| times the box.
+    auto piece = [&](double f, const Vec2& grad, double lam, double H2) {
+      double bound = f - r;
+      if (bound - margin < cut && smooth_box && !std::isnan(lam)) {
+        const Vec3 g = grad.x() * erq + grad.y() * Q.a;
+        const double Gu = g.dot(xu), Gt = g.dot(xt);
+        bound = std::max(bound, f - std::abs(Gu) * du - std::abs(Gt) * dt + 0.5 * lam * a * a - rest);
+        if (std::isfinite(H2)) {
+          const double signed_bound = f + edge(Gu, g.dot(xuu), du) + edge(Gt, g.dot(xtt), dt) -
+                                      std::abs(g.dot(xut)) * du * dt + 0.5 * lam * a * a - H2 * r * rest - 0.5 * x3;
+          bound = std::max(bound, signed_bound);
+        }
+      }
+      lb = std::min(lb, bound - margin);
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    // f_rho / rho for the distance to a point at radius pr of Q's half-plane,
+    // over the ball (f >= f_min, rho >= rho_min > 0): f_rho = (rho - pr) / f.
+    auto azimuthal = [&](double pr, double f_min) {
+      if (pr <= rho_min) return 0.0;
+      return -std::min(1.0, (pr - rho_min) / f_min) / rho_min;
+    };
+    for (const Vec2& pe : {Q.p0, Q.p1}) {
+      const Vec2 v = qq - pe;
+      const double f = v.norm();
+      truth = std::min(truth, f);
+      // A pole (pr = 0) is a point: smooth wherever f > 0.
+      const bool smooth = f - r > 0 && (pe.x() <= 0 || rho_min > 0);
+      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan,
+            smooth ? 1.0 / (f - r) + (pe.x() <= 0 ? 0.0 : 1.0 / rho_min) : inf);
+    }
+    if (Q.straight) {
+      if (seg_len > 0) {
+        const double t = (qq - Q.p0).dot(dir), s = Q.n.dot(qq) - Q.off, f = std::abs(s);
+        if (t >= 0 && t <= seg_len) truth = std::min(truth, f);
+        if (t >= -r && t <= seg_len + r) {
+          // Hessian sign(s) n_r / rho about the axis.
+          const double nr = s >= 0 ? Q.n.x() : -Q.n.x();
+          const bool smooth = nr >= 0 || rho_min > 0;
+          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan,
+                Q.n.x() == 0 ? 0.0 : rho_min > 0 ? std::abs(Q.n.x()) / rho_min : inf);
+        }
+      }
+    } else {
+      const Vec2 v = qq - Q.c;
+      const double D = v.norm(), s = D - Q.rho, f = std::abs(s);
+      const double c = D > 0 ? v.dot(mid) / D : 1.0;  // cos of the angle from the window's middle
+      if (D > 0 && c >= cos_h) truth = std::min(truth, f);
+      bool active = !(D > r) || cos_h <= 0;
+      if (!active) {
+        const double sd = r / D, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
+        const double cos_lim = cos_h * cd - sin_h * sd;  // cos(half + delta)
+        active = cos_lim <= 1e-12 || c >= cos_lim - 1e-12;
+      }
+      if (active) {
+        // Outside the tube f = D - rho: D's Hessian (a distance to a point of
+        // the half-plane). Inside f = rho - D: minus it, at least -1/D in the
+        // plane and -|D_rho| / rho about the axis.
+        const double D_min = D - r;
+        const bool smooth = D_min > 0 && (Q.c.x() == 0 || rho_min > 0);
+        double lam = nan;
+        if (smooth) {
+          if (s > 0) lam = Q.c.x() == 0 ? 0.0 : azimuthal(Q.c.x(), D_min);
+          else lam = -1.0 / D_min - (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
+        }
+        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam,
+              smooth ? 1.0 / D_min + (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min) : inf);
+      }
+    }
+    if (truth < cut) return done(false);  // a point of P is closer: not provable
+    if (lb >= cut) {
+      least = std::min(least, lb);
+      continue;
+    }
+    // A box this small that still does not clear sits at a minimum within
+    // rounding of the cut: no box will clear it.
+    if (r <= 1e-9 * (rmax + len) || truth - cut <= 1e-12 * (rmax + len)) return done(false);
+    if (n + 2 > kOpen || b.lu >= 63 || b.lt >= 63) return done(false);
+    if (prof >= azi) {
+      const HalfAngle h = half_angle(hu, &nu, b.lu, 0.5 * sweep);
+      for (double sgn : {-1.0, 1.0}) {
+        open[n++] = {lb, b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
+                     b.tm, dt, ct, st, b.lu + 1, b.lt};
+        std::push_heap(open, open + n, later);
+      }
+    } else {
+      const HalfAngle h = half_angle(ht, &nt, b.lt, M_PI / kSectors);
+      for (double sgn : {-1.0, 1.0}) {
+        open[n++] = {lb, b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
+                     st * h.c + sgn * ct * h.s, b.lu, b.lt + 1};
+        std::push_heap(open, open + n, later);
+      }
+    }
+  }
+  *lower = least;
+  return done(true);
+}
+
 PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower, unsigned outer) {
   Vec3 ca, cb;
   const double ea = patch_extent(A, &ca), eb = patch_extent(B, &cb);
@@ -571,6 +806,27 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
   // The caller's bound (patch_pair_quick's) already includes the bounding tori.
   const double disk_lb = std::isfinite(known_lower) ? known_lower : patch_disk_bound(A, B);
   bool need_g = !(disk_lb > gtol);
+  // Two conical patches: their hulls' distance (fast/cone_hull.h) proves them
+  // apart and bounds them without normal lines, which nearly parallel axes
+  // make ill-conditioned; when the hulls' closest points lie on both lateral
+  // surfaces it is the distance, and the enumeration is not needed.
+  double hull_lb = -kInf;
+  if (A.straight && B.straight) {
+    const ConeHullResult h = cone_hull_distance(A, B);
+    if (h.lower > gtol) {
+      hull_lb = h.lower;
+      need_g = false;
+      if (h.upper - h.lower <= gtol) {
+        PatchPairResult r;
+        r.found = r.separated = true;
+        r.upper = h.upper;
+        r.x = h.x;
+        r.y = h.y;
+        r.lower_skipped = h.lower;
+        return r;
+      }
+    }
+  }
   if (need_g) {
     // The bounding tori meet: try the cheap proof that the patches are apart
     // (boxes of the smaller patch against the other's surface), else the sign
@@ -605,6 +861,14 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutof
   if (need_g) {
     nonsmooth_points(c, true);
     nonsmooth_points(c, false);
+  }
+  if (hull_lb > gtol) {
+    // Apart whatever the enumeration found. A complete enumeration is the
+    // distance; a degenerate one may have missed the minimum, so the hull
+    // bound stands beside it.
+    c.res.separated = true;
+    if (c.res.degenerate) c.res.lower_skipped = std::min(c.res.lower_skipped, hull_lb);
+    return c.res;
   }
   c.res.separated = !c.res.degenerate && (!need_g || c.gb_min > gtol || c.gb_max < -gtol ||
                                           c.ga_min > gtol || c.ga_max < -gtol);

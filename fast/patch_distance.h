@@ -76,6 +76,25 @@ PatchPairResult patch_pair_distance(const Patch& A, const Patch& B,
 // proven", not "they meet".
 bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 
+// A proof that patches P and Q are at least `cut` apart, without the
+// enumeration of critical lines: the local, certified kernel in front of
+// patch_pair_distance. The distance from a point x to Q's patch is the plane
+// distance from x's (rho, z) in Q's meridian half-plane to Q's arc or segment
+// (the nearest point of a full surface of revolution shares x's half-plane):
+// the distance to the arc's circle (or the segment's line) when x's
+// direction from its centre (or its projection) falls in the arc (segment),
+// else to the nearer end. The boxes of the smaller patch (profile range x
+// azimuth range, from 16 sectors) are bounded by that function at the box's
+// centre less a first- or second-order remainder (as in patches_apart), and
+// split until every box clears `cut` or the budget is spent. True when every
+// box clears: *lower is then the least box bound (>= cut), a lower bound on
+// the patches' distance. False ("not proven") when a box's centre is closer
+// than cut (the pair really is) or the budget runs out; *evals counts boxes.
+// margin: the rounding allowance of the evaluations (a few ulps of the
+// coordinates).
+bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
+                      int* evals = nullptr);
+
 // A point where patch P crosses patch Q, from two points of P on either side
 // of Q's whole surface (the kernel's a_low and a_high): bisection along the
 // segment between their (profile, azimuth) parameters for a zero of Q's

@@ -36,6 +36,9 @@ namespace revdist {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Boxes the local proof (patches_at_least) may evaluate per patch pair before
+// the enumeration takes over.
+constexpr int kLocalBudget = 128;
 
 struct Part {
   std::int32_t node = -1;   // tree node, -1 for a refinement
@@ -495,6 +498,23 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           lb_pair = std::min(lb_pair, disk);
           fit_lb = std::min(fit_lb, quick.lower);
           continue;
+        }
+        // The local proof next: most pairs that reach it are well above the
+        // cut, only not by the closed-form bounds.
+        {
+          double local = 0.0;
+          int evals = 0;
+          Vec3 cp, cq;
+          const bool p_small = patch_extent(P, &cp) <= patch_extent(Q, &cq);
+          const bool proven = p_small ? patches_at_least(P, Q, kernel_cut, round, kLocalBudget, &local, &evals)
+                                      : patches_at_least(Q, P, kernel_cut, round, kLocalBudget, &local, &evals);
+          st.local_boxes += evals;
+          if (proven) {
+            ++st.local_pairs;
+            lb_pair = std::min(lb_pair, std::max(disk, local - fa.eps - fb.eps - round));
+            fit_lb = std::min(fit_lb, std::max(quick.lower, local));
+            continue;
+          }
         }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their

@@ -40,7 +40,9 @@ struct DistanceStats {
   long node_pairs = 0;   // pairs popped from the queue and processed (descended or compared)
   long bounds = 0;       // tight node-pair bounds computed (pairs are queued with a closed-form one)
   long leaf_pairs = 0;   // pairs of fits whose patches were compared
-  long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h)
+  long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h): the local proof's fallbacks
+  long local_pairs = 0;  // patch pairs settled by the local proof (patches_at_least)
+  long local_boxes = 0;  // boxes the local proof evaluated (settled or not)
   long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
   long refined = 0;      // parts created by refining fits below the tree leaves
   long nodes_built = 0;  // lazy trees: nodes this query built (0 for eager trees)

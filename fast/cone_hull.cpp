@@ -1,0 +1,262 @@
+// Distance between the convex hulls of two conical patches (see the header).
+//
+// A conical patch is the segment p0 p1 (r >= 0) rotated about the axis; each
+// generator point is a convex combination of the end circles' points at its
+// azimuth, so the patch lies in F = conv(E0 u E1), a solid frustum, whose
+// support function is h_F(u) = max_i (u . c_i + r_i |u - (u . a) a|). For any
+// u != 0 every x in A has u . x >= -h_A(-u) and every y in B has
+// u . y <= h_B(u), so
+//   |x - y| >= (-h_A(-u) - h_B(u)) / |u|,
+// with equality at the direction between the hulls' closest points (convex
+// duality). No normal line is solved for, so nearly parallel axes cost
+// nothing in conditioning: the bound depends on u only to second order where
+// the supports are smooth and first order at a kink, and u comes from
+// Gilbert's iteration on the Minkowski difference A - B (support points of
+// the frusta, closest point of a simplex of at most 4 of them), whose
+// correctness the bound does not rely on: any direction gives a valid bound.
+#include "fast/cone_hull.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace revdist {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+struct Frustum {
+  Vec3 c[2];  // end circle centres, relative to the shared origin
+  double r[2];
+  Vec3 a;
+};
+
+Frustum frustum(const Patch& P, const Vec3& shift) {
+  Frustum f;
+  f.c[0] = (P.o - shift) + P.p0.y() * P.a;
+  f.c[1] = (P.o - shift) + P.p1.y() * P.a;
+  f.r[0] = P.p0.x();
+  f.r[1] = P.p1.x();
+  f.a = P.a;
+  return f;
+}
+
+// Support value of F in direction u, and the supporting point when p is given.
+double support(const Frustum& f, const Vec3& u, Vec3* p = nullptr) {
+  const Vec3 up = u - u.dot(f.a) * f.a;
+  const double n = up.norm();
+  Vec3 e = n > 0 ? Vec3(up / n) : Vec3::Zero();  // any rim point supports when u is along the axis
+  const double h0 = u.dot(f.c[0]) + f.r[0] * n, h1 = u.dot(f.c[1]) + f.r[1] * n;
+  const int i = h0 >= h1 ? 0 : 1;
+  if (p) *p = f.c[i] + f.r[i] * e;
+  return i == 0 ? h0 : h1;
+}
+
+struct Vert {
+  Vec3 w, pa, pb;  // w = pa - pb
+};
+
+// Closest point to the origin of the convex hull of s[0..n): the projection
+// onto the affine hull of the subset whose barycentric weights are all
+// positive and whose point is nearest (the closest point lies in the relative
+// interior of some face, where it is that face's projection). Writes the
+// weights, reduces s to that subset and returns the point.
+Vec3 closest_in_simplex(Vert* s, int* n, double* lam) {
+  double best = std::numeric_limits<double>::infinity();
+  Vert keep[4];
+  double keep_l[4];
+  int keep_n = 0;
+  Vec3 best_v = Vec3::Zero();
+  for (int mask = 1; mask < (1 << *n); ++mask) {
+    int idx[4], k = 0;
+    for (int i = 0; i < *n; ++i)
+      if (mask & (1 << i)) idx[k++] = i;
+    double l[4] = {1, 0, 0, 0};
+    if (k > 1) {
+      // Gram system for mu_j (j = 1..k-1): sum_l G_jl mu_l = -(P_j - P_0) . P_0.
+      const Vec3& p0 = s[idx[0]].w;
+      Vec3 e[3];
+      double g[3][4];
+      const int m = k - 1;
+      for (int j = 0; j < m; ++j) e[j] = s[idx[j + 1]].w - p0;
+      double diag = 1;
+      for (int j = 0; j < m; ++j) {
+        for (int q = 0; q < m; ++q) g[j][q] = e[j].dot(e[q]);
+        g[j][m] = -e[j].dot(p0);
+        diag *= g[j][j];
+      }
+      // Gaussian elimination with partial pivoting; a nearly flat face is skipped.
+      bool ok = diag > 0;
+      for (int col = 0; ok && col < m; ++col) {
+        int piv = col;
+        for (int r = col + 1; r < m; ++r)
+          if (std::abs(g[r][col]) > std::abs(g[piv][col])) piv = r;
+        if (!(std::abs(g[piv][col]) > 0)) ok = false;
+        for (int q = 0; ok && q <= m; ++q) std::swap(g[col][q], g[piv][q]);
+        for (int r = col + 1; ok && r < m; ++r) {
+          const double f = g[r][col] / g[col][col];
+          for (int q = col; q <= m; ++q) g[r][q] -= f * g[col][q];
+        }
+      }
+      if (ok) {
+        double det = 1;
+        for (int j = 0; j < m; ++j) det *= g[j][j];
+        ok = std::abs(det) > 1e-12 * diag;
+      }
+      if (!ok) continue;
+      double mu[3];
+      for (int j = m - 1; j >= 0; --j) {
+        double t = g[j][m];
+        for (int q = j + 1; q < m; ++q) t -= g[j][q] * mu[q];
+        mu[j] = t / g[j][j];
+      }
+      l[0] = 1;
+      for (int j = 0; j < m; ++j) l[0] -= (l[j + 1] = mu[j]);
+      bool inside = true;
+      for (int j = 0; j < k; ++j) inside = inside && l[j] > 0;
+      if (!inside) continue;
+    }
+    Vec3 v = Vec3::Zero();
+    for (int j = 0; j < k; ++j) v += l[j] * s[idx[j]].w;
+    const double d = v.squaredNorm();
+    if (d < best) {
+      best = d;
+      best_v = v;
+      keep_n = k;
+      for (int j = 0; j < k; ++j) keep[j] = s[idx[j]], keep_l[j] = l[j];
+    }
+  }
+  for (int j = 0; j < keep_n; ++j) s[j] = keep[j], lam[j] = keep_l[j];
+  *n = keep_n;
+  return best_v;
+}
+
+// The point of straight patch P nearest to x in x's meridian plane of P.
+Vec3 onto_patch(const Patch& P, const Vec3& x) {
+  Vec3 er;
+  const Vec2 q = patch_local(P, x, &er);
+  const Vec2 d = P.p1 - P.p0;
+  const double l2 = d.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((q - P.p0).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return patch_world(P, P.p0 + t * d, er);
+}
+
+}  // namespace
+
+ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
+  ConeHullResult res;
+  res.lower = -std::numeric_limits<double>::infinity();
+  const Vec3 shift = A.o + 0.5 * (A.p0.y() + A.p1.y()) * A.a;
+  const Frustum fa = frustum(A, shift), fb = frustum(B, shift);
+  double size = 0;
+  for (const Frustum* f : {&fa, &fb})
+    for (int i = 0; i < 2; ++i) size = std::max(size, f->c[i].cwiseAbs().maxCoeff() + f->r[i]);
+
+  Vert s[4];
+  int n = 0;
+  double lam[4] = {1, 0, 0, 0};
+  Vec3 v = 0.5 * (fa.c[0] + fa.c[1]) - 0.5 * (fb.c[0] + fb.c[1]);
+  if (!(v.squaredNorm() > 0)) v = Vec3::UnitX();
+  double vlen = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 64; ++it) {
+    res.iterations = it + 1;
+    Vert w;
+    support(fa, -v, &w.pa);
+    support(fb, v, &w.pb);
+    w.w = w.pa - w.pb;
+    // |v| - v . w / |v| is the gap between the current point and the bound along v.
+    const double vn = v.norm();
+    if (n > 0 && vn - v.dot(w.w) / vn <= 4 * kEps * size) break;
+    bool dup = false;
+    for (int i = 0; i < n; ++i) dup = dup || s[i].w == w.w;
+    if (dup) break;
+    s[n++] = w;
+    const Vec3 next = closest_in_simplex(s, &n, lam);
+    const double nl = next.norm();
+    if (!(nl > 0)) return res;  // the hulls meet (or touch): no bound
+    if (!(nl < vlen)) break;    // no progress: rounding has the last word
+    v = next;
+    vlen = nl;
+    if (n == 4) return res;  // a tetrahedron around a point that is not the origin: cannot be closest
+  }
+  // The bound along u (not normalised; divided by |u| below). v is the
+  // difference of two hull points, each rounded to ulps of the frusta's
+  // extent S, so its direction is off by ~eps S / |v|; where a support ties
+  // both end circles (the closest point inside a generator: cans side by
+  // side) that costs the bound first order, S eps S / |v|. Every direction
+  // gives a valid bound, so v is also tried with its component along each
+  // axis set so that it is normal to that cone's generator at the support,
+  // which removes that first-order term; the best candidate is kept.
+  auto gap_along = [&](const Vec3& d) { return (-support(fa, -d) - support(fb, d)) / d.norm(); };
+  // The generator at the support of f in direction s * d is normal to d when
+  // d . a = -s |d_perp| t_r / t_z ((t_r, t_z) the segment's direction).
+  auto normal_to = [](const Patch& P, const Vec3& d, double s) {
+    const Vec2 t = P.p1 - P.p0;
+    if (!(std::abs(t.y()) > 0)) return d;
+    const Vec3 dp = d - d.dot(P.a) * P.a;
+    return Vec3(dp - s * dp.norm() * t.x() / t.y() * P.a);
+  };
+  // The hulls' closest points, moved onto the patches: an upper bound, and
+  // their difference another direction (the simplex's v loses digits to
+  // cancellation when the simplex is long and thin).
+  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
+  for (int j = 0; j < n; ++j) x += lam[j] * s[j].pa, y += lam[j] * s[j].pb;
+  res.x = onto_patch(A, x + shift);
+  res.y = onto_patch(B, y + shift);
+  res.upper = (res.x - res.y).norm();
+  Vec3 u = v;
+  double best = gap_along(u);
+  // Normal to both generators at once (closest points inside both, as for
+  // crossing cans): Newton in the span of the two axes on
+  // h_P(d) = d . a_P + s_P |d_perp,P| t_r / t_z = 0; alternating the single
+  // corrections above converges only at rate cos^2 of the axes' angle.
+  auto normal_to_both = [&](Vec3 d) {
+    const Vec2 ta = A.p1 - A.p0, tb = B.p1 - B.p0;
+    if (!(std::abs(ta.y()) > 0 && std::abs(tb.y()) > 0)) return d;
+    const double ka = -ta.x() / ta.y(), kb = tb.x() / tb.y();  // h_A = d.a_A - ka |..|, h_B = d.a_B - kb |..|
+    for (int it = 0; it < 3; ++it) {
+      const Vec3 pa = d - d.dot(A.a) * A.a, pb = d - d.dot(B.a) * B.a;
+      const double la = pa.norm(), lb = pb.norm();
+      if (!(la > 0 && lb > 0)) return d;
+      const double fa_ = d.dot(A.a) + ka * la, fb_ = d.dot(B.a) + kb * lb;
+      // d + al a_A + be b_B: derivatives of h_A, h_B in al and be.
+      const double c = A.a.dot(B.a);
+      const double j11 = 1, j12 = c + ka * pa.dot(B.a) / la;
+      const double j21 = c + kb * pb.dot(A.a) / lb, j22 = 1;
+      const double det = j11 * j22 - j12 * j21;
+      if (!(std::abs(det) > 1e-300)) return d;
+      const double al = -(fa_ * j22 - fb_ * j12) / det, be = -(j11 * fb_ - j21 * fa_) / det;
+      d += al * A.a + be * B.a;
+    }
+    return d;
+  };
+  // The cones' normals at the witnesses: their azimuths err by the
+  // witnesses' tangential error over the radius, not over the gap.
+  auto cone_normal = [](const Patch& P, const Vec3& p) {
+    Vec3 er;
+    patch_local(P, p, &er);
+    return Vec3(P.n.x() * er + P.n.y() * P.a);
+  };
+  const Vec3 na = cone_normal(A, res.x), nb = cone_normal(B, res.y);
+  for (const Vec3& base : {v, Vec3(res.x - res.y), na, Vec3(-na), nb, Vec3(-nb)})
+    for (const Vec3& c : {base, normal_to(A, base, -1), normal_to(B, base, 1), normal_to(B, normal_to(A, base, -1), 1),
+                          normal_to(A, normal_to(B, base, 1), -1), normal_to_both(base)}) {
+      if (!(c.squaredNorm() > 0)) continue;
+      const double gc = gap_along(c);
+      if (gc > best) best = gc, u = c;
+    }
+  const double g = -support(fa, -u) - support(fb, u);
+  // Rounding: each support value is a dot product and a norm of terms of at
+  // most |u|_1 (|c| + r); the centres themselves are the patch's to a few
+  // ulps of its coordinates (shift and axis origin). 32 eps of those covers it.
+  const double coord = std::max({A.o.cwiseAbs().maxCoeff(), B.o.cwiseAbs().maxCoeff(), shift.cwiseAbs().maxCoeff(),
+                                 std::abs(A.p0.y()), std::abs(A.p1.y()), std::abs(B.p0.y()), std::abs(B.p1.y())});
+  const double err = 32 * kEps * u.lpNorm<1>() * (size + coord);
+  const double ulen = u.norm() * (1 + 4 * kEps);
+  res.lower = (g - err) / ulen;
+  if (res.lower > 0) res.lower *= 1 - 4 * kEps;
+  return res;
+}
+
+}  // namespace revdist

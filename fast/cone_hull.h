@@ -1,0 +1,28 @@
+// A proven lower bound on the distance between two conical patches (cones,
+// cylinders, flat annuli) that needs no normal lines: the distance between
+// their convex hulls (solid frusta), bounded by a separating direction. It is
+// well conditioned where the common normals are not (nearly parallel axes,
+// where every normal line of one cone is nearly normal to the other).
+#pragma once
+#include "fast/patch.h"
+
+namespace revdist {
+
+struct ConeHullResult {
+  // Proven (rounding included) lower bound on the distance between the two
+  // frusta, hence between the patches; <= 0 when the hulls may meet.
+  double lower = 0.0;
+  // Points of the patches (the hulls' closest points moved onto the lateral
+  // surfaces in their meridian planes, to rounding) and their distance, an
+  // upper bound on the patch distance; equal to `lower` up to the iteration's
+  // accuracy when the hulls' closest points lie on the lateral surfaces (side
+  // by side), larger when one lies inside an end disk (stacked).
+  double upper = 0.0;
+  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
+  int iterations = 0;
+};
+
+// Straight patches only (Patch::straight).
+ConeHullResult cone_hull_distance(const Patch& A, const Patch& B);
+
+}  // namespace revdist
