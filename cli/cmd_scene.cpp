@@ -47,7 +47,8 @@ Json stats_json(const SceneStats& s) {
           {"narrow_calls", s.narrow_calls},
           {"node_pairs", s.node_pairs},      {"nodes_built", s.nodes_built},
           {"broad_nodes", s.broad_nodes},    {"broad_rebuilt", s.broad_rebuilt},
-          {"time_ms", s.time_ms},            {"cpu_ms", s.cpu_ms}};
+          {"time_ms", s.time_ms},            {"cpu_ms", s.cpu_ms},
+          {"serial_ms", s.serial_ms}};
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -87,12 +88,12 @@ void run(const Options& o) {
   SceneStats total;
   std::vector<double> frame_ms;
   Progress progress("scene", static_cast<std::size_t>(o.frames));  // output.h: after 1 s only
+  std::vector<ScenePair> pairs;  // one vector for every frame: within() reuses its elements
   for (long f = 0; f < o.frames; ++f) {
     SceneStats st;
     scene.set_frame(static_cast<double>(f), &st);
-    std::vector<ScenePair> pairs = kind == "within"    ? scene.within(o.within, &st)
-                                   : kind == "nearest" ? scene.nearest(query_instance, k, &st)
-                                                       : scene.closest(k, &st);
+    if (kind == "within") scene.within(o.within, &st, &pairs);
+    else pairs = kind == "nearest" ? scene.nearest(query_instance, k, &st) : scene.closest(k, &st);
     total.add(st);
     frame_ms.push_back(st.time_ms);
     Json pj = Json::array();

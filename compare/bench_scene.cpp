@@ -3,6 +3,8 @@
 //    within d = 0.3) of an N-ring mesh on T threads; counters give the median
 //    and p90 per frame of the wall time and of the CPU time summed over the
 //    threads (per-thread clocks), and the pairs found and tested.
+//  - BM_SceneScaling/N: 1 against 2 threads on the same frames, interleaved
+//    (scaling of throughput, CPU ratio, serial share; see below).
 //  - BM_Threshold/d: every broad-phase candidate pair of a 1000-ring mesh,
 //    once as the predicate "closer than d?" and once as a full distance
 //    (tol 1e-6); counters: per-pair CPU medians of both and their ratio, over
@@ -26,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <numeric>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -86,6 +89,68 @@ void BM_SceneWithin(benchmark::State& state) {
   state.counters["cpu_ms_p90"] = quantile(cpu, 0.9);
   state.counters["pairs_within"] = static_cast<double>(found) / static_cast<double>(frame);
   state.counters["pairs_tested"] = static_cast<double>(tested) / static_cast<double>(frame);
+}
+
+double load_average() {
+  double load = -1.0;
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &load) != 1) load = -1.0;
+    std::fclose(f);
+  }
+  return load;
+}
+
+//  BM_SceneScaling/N: throughput of 1 against 2 threads on the same frames,
+//  interleaved (frame f on the 1-thread scene, then on the 2-thread one) so
+//  that the load of a shared machine falls on both alike: the ratio of summed
+//  wall times is the scaling; the ratio of summed CPU (all threads) shows
+//  contention (1 if none); the serial share bounds what 2 cores can give
+//  (Amdahl). Frames 1..24 of the motion, repeated; frame 0 (every pair
+//  computed from scratch) is left out. The answers must agree pair by pair.
+void BM_SceneScaling(benchmark::State& state) {
+  const Case c = ring_case(static_cast<int>(state.range(0)));
+  SceneOptions o1, o2;
+  o2.threads = 2;
+  Scene s1(c, o1), s2(c, o2);
+  std::vector<double> wall[2], cpu[2], serial[2];
+  std::vector<ScenePair> pairs[2];
+  long frame = 0, differ = 0;
+  const double load0 = load_average();
+  for (auto _ : state) {
+    const double f = static_cast<double>(frame++ % 25);
+    for (int k = 0; k < 2; ++k) {
+      Scene& s = k ? s2 : s1;
+      SceneStats st;
+      s.set_frame(f, &st);
+      s.within(0.3, &st, &pairs[k]);
+      if (f == 0) continue;
+      wall[k].push_back(st.time_ms);
+      cpu[k].push_back(st.cpu_ms);
+      serial[k].push_back(st.serial_ms);
+    }
+    differ += pairs[0].size() != pairs[1].size();
+    for (std::size_t i = 0; i < std::min(pairs[0].size(), pairs[1].size()); ++i)
+      differ += pairs[0][i].a != pairs[1][i].a || pairs[0][i].b != pairs[1][i].b ||
+                pairs[0][i].result.lower != pairs[1][i].result.lower || pairs[0][i].result.upper != pairs[1][i].result.upper;
+  }
+  auto sum = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); };
+  state.counters["load_before"] = load0;
+  state.counters["load_after"] = load_average();
+  state.counters["frames"] = static_cast<double>(wall[0].size());
+  state.counters["differing_answers"] = static_cast<double>(differ);
+  for (int k = 0; k < 2; ++k) {
+    const std::string t = k ? "_2t" : "_1t";
+    state.counters["wall_ms_median" + t] = quantile(wall[k], 0.5);
+    state.counters["wall_ms_p90" + t] = quantile(wall[k], 0.9);
+    state.counters["cpu_ms_median" + t] = quantile(cpu[k], 0.5);
+    state.counters["cpu_ms_p90" + t] = quantile(cpu[k], 0.9);
+    state.counters["serial_ms_median" + t] = quantile(serial[k], 0.5);
+  }
+  state.counters["scaling"] = sum(wall[0]) / sum(wall[1]);
+  state.counters["cpu_ratio"] = sum(cpu[1]) / sum(cpu[0]);
+  const double share = sum(serial[1]) / sum(cpu[1]);
+  state.counters["serial_share_2t"] = share;
+  state.counters["amdahl_bound"] = sum(cpu[0]) / (sum(serial[1]) + (sum(cpu[1]) - sum(serial[1])) / 2);
 }
 
 void BM_Threshold(benchmark::State& state) {
@@ -250,6 +315,7 @@ BENCHMARK(BM_SceneDeforming)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Ite
 BENCHMARK(BM_DeformableFrame)->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond)->Iterations(2000);
 BENCHMARK(BM_SceneWithin)->Args({1000, 1})->Args({1000, 2})->Args({10000, 1})->Args({10000, 2})
     ->Unit(benchmark::kMillisecond)->Iterations(8);
+BENCHMARK(BM_SceneScaling)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(100);
 BENCHMARK(BM_Threshold)->Arg(10)->Arg(20)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 int main(int argc, char** argv) {

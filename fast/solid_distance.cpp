@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <string>
 #include <vector>
 
 #include "core/curve_eval.h"
@@ -420,8 +421,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         continue;
       }
     }
-    if (++st.node_pairs > opt.max_node_pairs) {
-      res.reason = "work budget exhausted";
+    const bool out_of_kernels = st.patch_pairs >= opt.max_patch_pairs;
+    if (++st.node_pairs > opt.max_node_pairs || out_of_kernels) {
+      res.reason = out_of_kernels ? "work budget exhausted: " + std::to_string(st.patch_pairs) + " patch-pair kernels (max_patch_pairs)"
+                                  : "work budget exhausted: " + std::to_string(opt.max_node_pairs) + " node pairs (max_node_pairs)";
       settled_lb = std::min(settled_lb, e.lb);
       unresolved = true;
       break;
@@ -582,6 +585,9 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       res.reason = "containment undecided: a surface point of one solid lies within rounding of the other's boundary";
   }
   lb = std::max(lb, 0.0);
+  // A stop before any candidate (a small budget) still owes a finite
+  // bracket: any two genuine surface points bound the distance from above.
+  if (!(ub < kInf)) offer(A.some_surface_point(), B.some_surface_point());
   if (!(ub < kInf)) {
     res.reason = "no candidate pair found";
     res.lower = lb;

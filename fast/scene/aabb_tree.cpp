@@ -103,11 +103,18 @@ double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std:
     for (std::int32_t k : inner) cross(nodes_[k].left, nodes_[k].right, d, out);
     return 0.0;
   }
-  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> part(inner.size());
-  const double workers = parallel_for(inner.size(), threads, [&](std::size_t i) {
-    cross(nodes_[inner[i]].left, nodes_[inner[i]].right, d, &part[i]);
+  // Tasks in a fixed number of consecutive groups (a vector each, not one per
+  // node); the groups are then copied to their places in parallel too.
+  const std::size_t groups = std::min<std::size_t>(inner.size(), 64);
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> part(groups);
+  double workers = parallel_for(groups, threads, [&](std::size_t g) {
+    for (std::size_t i = inner.size() * g / groups; i < inner.size() * (g + 1) / groups; ++i)
+      cross(nodes_[inner[i]].left, nodes_[inner[i]].right, d, &part[g]);
   });
-  for (const auto& p : part) out->insert(out->end(), p.begin(), p.end());
+  std::vector<std::size_t> at(groups + 1, out->size());
+  for (std::size_t g = 0; g < groups; ++g) at[g + 1] = at[g] + part[g].size();
+  out->resize(at[groups]);
+  workers += parallel_for(groups, threads, [&](std::size_t g) { std::copy(part[g].begin(), part[g].end(), out->begin() + at[g]); });
   return workers;
 }
 

@@ -1,6 +1,6 @@
-// Work sharing for scene queries: std::thread workers take indices from a
-// shared counter; each index writes only its own slot, so the answers do not
-// depend on the number of threads or on scheduling.
+// Work sharing for scene queries: persistent std::thread workers; each index
+// writes only its own slot, so the answers do not depend on the number of
+// threads or on scheduling.
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -12,6 +12,11 @@ namespace revdist {
 // (CLOCK_THREAD_CPUTIME_ID per worker); the caller measures its own thread. The first exception thrown by fn is
 // rethrown here once every worker has stopped.
 double parallel_for(std::size_t n, int threads, const std::function<void(std::size_t)>& fn);
+
+// As above, fn(i, w) also gets the worker w in [0, threads) running it (0 is
+// the caller), for per-worker accumulators; which w runs which i varies from
+// call to call, so only order-independent sums may be kept per worker.
+double parallel_for_workers(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& fn);
 
 // CPU seconds used so far by the calling thread.
 double thread_cpu_seconds();

@@ -25,17 +25,27 @@ using PairKey = std::pair<std::int32_t, std::int32_t>;
 class StepTimer {
  public:
   explicit StepTimer(SceneStats* st) : st_(st), wall0_(std::chrono::steady_clock::now()), cpu0_(thread_cpu_seconds()) {}
-  void add_worker_cpu(double seconds) { workers_ += seconds; }
   ~StepTimer() {
     st_->time_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0_).count();
-    st_->cpu_ms += 1e3 * (thread_cpu_seconds() - cpu0_ + workers_);
+    const double own = 1e3 * (thread_cpu_seconds() - cpu0_);
+    st_->cpu_ms += own;
+    st_->serial_ms += own;  // less the parallel sections (parallel_section)
   }
 
  private:
   SceneStats* st_;
   std::chrono::steady_clock::time_point wall0_;
-  double cpu0_, workers_ = 0.0;
+  double cpu0_;
 };
+
+// A parallel section inside a StepTimer's step: run() returns the other
+// workers' CPU seconds; the caller's own share is not serial.
+template <class Run>
+void parallel_section(SceneStats* st, Run&& run) {
+  const double c0 = thread_cpu_seconds();
+  st->cpu_ms += 1e3 * run();
+  st->serial_ms -= 1e3 * (thread_cpu_seconds() - c0);
+}
 
 // Orders answers for k closest: smallest upper first, then instance indices.
 bool closer(const ScenePair& x, const ScenePair& y) {
@@ -154,6 +164,7 @@ void SceneStats::add(const SceneStats& o) {
   broad_rebuilt = broad_rebuilt || o.broad_rebuilt;
   time_ms += o.time_ms;
   cpu_ms += o.cpu_ms;
+  serial_ms += o.serial_ms;
 }
 
 Scene::Scene(const Case& c, const SceneOptions& options)
@@ -251,30 +262,28 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->nodes_built += unreported_nodes_;
   unreported_nodes_ = 0;
   // Per instance, independent (a deforming instance has a shape of its own),
-  // so spread over the threads; the results do not depend on their number.
+  // so spread over the threads in one pass; the results do not depend on their number.
   // A deforming shape is blended here; its tree waits for a query (build_stale).
   stale_.resize(size(), 0);
-  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
-    if (motion_[i].time_rate == 0) return;
-    CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
-    const SolidDef& def = solids_[shape.solid];
-    const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
-    if (t == shape.time) return;
-    shape.time = t;
-    shape.profile = profile_at(def, t);
-    cylinder_bounds(model_.shape_of[i]);
-    stale_[i] = 1;
-  }));
-  timer.add_worker_cpu(parallel_for(size(), options_.threads, [&](std::size_t i) {
-    if (f != 0 && !motion_[i].moving()) {
-      boxes_[i] = world_box(i);  // unchanged pose; the box is recomputed the same
-      return;
+  parallel_section(st, [&] { return parallel_for(size(), options_.threads, [&](std::size_t i) {
+    if (motion_[i].time_rate != 0) {
+      CaseModel::Shape& shape = *model_.shapes[model_.shape_of[i]];
+      const SolidDef& def = solids_[shape.solid];
+      const double t = time_at_frame(time0_[i], motion_[i], f, static_cast<double>(def.keyframes.size() - 1));
+      if (t != shape.time) {
+        shape.time = t;
+        shape.profile = profile_at(def, t);
+        cylinder_bounds(model_.shape_of[i]);
+        stale_[i] = 1;
+      }
     }
-    const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
-    model_.instances[i].R = p.rotation();
-    model_.instances[i].t = p.translation;
+    if (f == 0 || motion_[i].moving()) {  // else the pose is unchanged (the box is recomputed: the shape may not be)
+      const Pose p = pose_at_frame(pose0_[i], motion_[i], f);
+      model_.instances[i].R = p.rotation();
+      model_.instances[i].t = p.translation;
+    }
     boxes_[i] = world_box(i);
-  }));
+  }); });
   st->broad_rebuilt = !tree_.refit(boxes_);
   st->broad_nodes = static_cast<long>(tree_.size());
 }
@@ -357,7 +366,10 @@ bool Scene::settle_from_memory(const PairMemory& m, double d, ScenePair* p) cons
   const Vec3 x = A.R * m.p_a + A.t, y = B.R * m.p_b + B.t;
   const double upper = (x - y).norm();
   if (!(upper <= d || lower > d)) return false;
+  // The slot may hold an older answer: every field is set (the reason keeps its storage).
   SolidDistanceResult& r = p->result;
+  r.overlap = false;
+  r.stats = DistanceStats{};
   r.lower = std::min(lower, upper);
   r.upper = upper;
   r.distance = 0.5 * (r.lower + r.upper);
@@ -370,41 +382,56 @@ bool Scene::settle_from_memory(const PairMemory& m, double d, ScenePair* p) cons
 }
 
 std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
+  std::vector<ScenePair> out;
+  within(d, st, &out);
+  return out;
+}
+
+// Serial work here is what two cores cannot share (SceneStats::serial_ms), so
+// every pass over the candidates runs in parallel: the memory lookup, the
+// counters (per worker) and the gathering of the answer; the pairs are
+// computed in slots kept across calls (their strings keep their storage), and
+// moved to the caller's vector, whose elements are reused when it is passed again.
+void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
-  std::vector<std::pair<std::int32_t, std::int32_t>> cand;
-  timer.add_worker_cpu(tree_.pairs_within(d, &cand, options_.threads));
+  std::vector<std::pair<std::int32_t, std::int32_t>>& cand = cand_;
+  cand.clear();
+  parallel_section(st, [&] { return tree_.pairs_within(d, &cand, options_.threads); });
   sort_pairs(&cand, size());
   {
     std::vector<std::int32_t> touched;
     if (std::find(stale_.begin(), stale_.end(), 1) != stale_.end())
       for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
-    timer.add_worker_cpu(build_stale(touched, st));
+    parallel_section(st, [&] { return build_stale(touched, st); });
   }
-  // The remembered pairs, matched to the candidates (both sorted).
-  std::vector<const PairMemory*> old(cand.size(), nullptr);
-  if (options_.coherence) {
-    std::size_t j = 0;
-    for (std::size_t k = 0; k < cand.size(); ++k) {
-      while (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) < cand[k]) ++j;
-      // A deforming shape's remembered witness points are no longer on its surface.
-      const bool rigid = motion_[cand[k].first].time_rate == 0 && motion_[cand[k].second].time_rate == 0;
-      if (j < memory_.size() && PairKey(memory_[j].a, memory_[j].b) == cand[k] && memory_[j].valid && rigid)
-        old[k] = &memory_[j];
-    }
-  }
-  std::vector<ScenePair> all(cand.size());
+  if (slots_.size() < cand.size()) slots_.resize(cand.size());
   // This call's memory, in the storage of the call before last (no reallocation once warmed up).
   std::vector<PairMemory>& memory = memory_next_;
   memory.resize(cand.size());
-  std::vector<char> coherent(cand.size(), 0), rerun(cand.size(), 0);
-  timer.add_worker_cpu(parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
-    ScenePair& p = all[k];
+  keep_.resize(cand.size());
+  struct alignas(64) Counts {  // per worker: integer sums, the same in any order
+    long coherent = 0, narrow_calls = 0, node_pairs = 0, nodes_built = 0, threshold = 0;
+  };
+  std::vector<Counts> counts(static_cast<std::size_t>(std::max(1, options_.threads)));
+  parallel_section(st, [&] { return parallel_for_workers(cand.size(), options_.threads, [&](std::size_t k, std::size_t w) {
+    ScenePair& p = slots_[k];
     p.a = cand[k].first;
     p.b = cand[k].second;
-    if (old[k] && settle_from_memory(*old[k], d, &p)) {
-      coherent[k] = 1;
-      memory[k] = *old[k];  // keep the reference pose: bounds do not loosen frame by frame
+    // The remembered pair, if any (among the few remembered with the same a);
+    // a deforming shape's remembered witness points are no longer on its surface.
+    const PairMemory* old = nullptr;
+    if (options_.coherence && motion_[p.a].time_rate == 0 && motion_[p.b].time_rate == 0 &&
+        static_cast<std::size_t>(p.a) + 1 < memory_first_.size())
+      for (std::int32_t j = memory_first_[p.a]; j < memory_first_[p.a + 1]; ++j)
+        if (memory_keys_[j].second == p.b) {
+          if (memory_[j].valid) old = &memory_[j];
+          break;
+        }
+    Counts& c = counts[w];
+    if (old && settle_from_memory(*old, d, &p)) {
+      ++c.coherent;
+      memory[k] = *old;  // keep the reference pose: bounds do not loosen frame by frame
     } else {
       // With coherence, a pair is first asked about d + h: a "farther" answer
       // then holds for the frames its lower bound needs to lose h, where one
@@ -412,12 +439,16 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       // (and not proven within d by the way), it is asked about d itself.
       const double h = options_.coherence ? 0.1 * d : 0.0;
       p.result = query(p.a, p.b, d + h);
+      ++c.narrow_calls;
       if (h > 0 && !(p.result.lower > d + h) && !(p.result.upper <= d)) {
         const long built = p.result.stats.nodes_built;  // the first call's work counts too
         p.result = query(p.a, p.b, d);
         p.result.stats.nodes_built += built;
-        rerun[k] = 1;
+        ++c.narrow_calls;
       }
+      c.node_pairs += p.result.stats.node_pairs;
+      c.nodes_built += p.result.stats.nodes_built;
+      if (p.result.decided) ++c.threshold;
       const PosedSolid& A = model_.instances[p.a];
       const PosedSolid& B = model_.instances[p.b];
       PairMemory& m = memory[k];
@@ -431,29 +462,42 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
       m.valid = !p.result.overlap && std::isfinite(p.result.upper);
     }
     p.within = p.result.upper <= d;
-  }));
-  if (options_.coherence) std::swap(memory_, memory_next_);
-  std::size_t kept = 0;  // the answer is compacted in place (no second copy of every pair)
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    ScenePair& p = all[k];
-    if (coherent[k]) {
-      ++st->pairs_coherent;
-    } else {
-      st->narrow_calls += 1 + rerun[k];
-      st->node_pairs += p.result.stats.node_pairs;
-      st->nodes_built += p.result.stats.nodes_built;
-      if (p.result.decided) ++st->pairs_threshold;
-    }
-    if (!(p.result.lower > d)) {
-      if (kept != k) all[kept] = std::move(p);
-      ++kept;
-    }
+    keep_[k] = !(p.result.lower > d);
+  }); });
+  for (const Counts& c : counts) {
+    st->pairs_coherent += c.coherent;
+    st->narrow_calls += c.narrow_calls;
+    st->node_pairs += c.node_pairs;
+    st->nodes_built += c.nodes_built;
+    st->pairs_threshold += c.threshold;
   }
-  all.resize(kept);
+  // Where each kept pair goes (a prefix count over bytes), then the moves in parallel.
+  std::vector<std::int32_t>& at = at_;
+  at.resize(cand.size());
+  std::int32_t kept = 0;
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    at[k] = kept;
+    kept += keep_[k];
+  }
+  out->resize(static_cast<std::size_t>(kept));
+  parallel_section(st, [&] { return parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
+    if (keep_[k]) (*out)[at[k]] = std::move(slots_[k]);
+  }); });
   st->pairs_total += n * (n - 1) / 2;
   st->pairs_tested += static_cast<long>(cand.size());
   st->pairs_culled += n * (n - 1) / 2 - static_cast<long>(cand.size());
-  return all;
+  if (options_.coherence) {
+    // memory[k] is cand[k]'s: keep both, and where each a's pairs start (one
+    // sequential pass over the small keys, not a search through the big records).
+    std::swap(memory_, memory_next_);
+    std::swap(memory_keys_, cand_);
+    memory_first_.assign(size() + 1, 0);
+    std::size_t j = 0;
+    for (std::size_t a = 0; a <= size(); ++a) {
+      while (j < memory_keys_.size() && static_cast<std::size_t>(memory_keys_[j].first) < a) ++j;
+      memory_first_[a] = static_cast<std::int32_t>(j);
+    }
+  }
 }
 
 // Best-first over a stream of pairs in non-decreasing box gap. Batches have a
@@ -483,17 +527,19 @@ std::vector<ScenePair> Scene::best_k(Stream& stream, std::size_t k, SceneStats* 
     rerun.assign(batch.size(), 0);
     std::vector<std::int32_t> touched;
     for (const ScenePair& p : batch) touched.insert(touched.end(), {p.a, p.b});
-    st->cpu_ms += 1e3 * build_stale(touched, st);
+    parallel_section(st, [&] { return build_stale(touched, st); });
     const double t = cutoff;
-    st->cpu_ms += 1e3 * parallel_for(batch.size(), options_.threads, [&](std::size_t i) {
-      ScenePair& p = batch[i];
-      p.result = query(p.a, p.b, std::isfinite(t) ? t : kNaN);
-      if (p.result.decided && !(p.result.lower > t)) {
-        const long built = p.result.stats.nodes_built;  // the first call's work counts too
-        p.result = query(p.a, p.b, kNaN);
-        p.result.stats.nodes_built += built;
-        rerun[i] = 1;
-      }
+    parallel_section(st, [&] {
+      return parallel_for(batch.size(), options_.threads, [&](std::size_t i) {
+        ScenePair& p = batch[i];
+        p.result = query(p.a, p.b, std::isfinite(t) ? t : kNaN);
+        if (p.result.decided && !(p.result.lower > t)) {
+          const long built = p.result.stats.nodes_built;  // the first call's work counts too
+          p.result = query(p.a, p.b, kNaN);
+          p.result.stats.nodes_built += built;
+          rerun[i] = 1;
+        }
+      });
     });
     for (std::size_t i = 0; i < batch.size(); ++i) {
       ScenePair& p = batch[i];

@@ -56,6 +56,8 @@ struct SceneStats {
   bool broad_rebuilt = false;  // the broad phase was rebuilt rather than refitted this frame
   double time_ms = 0.0;      // wall time of the frame (poses, boxes, broad and narrow phase)
   double cpu_ms = 0.0;       // CPU time of the same, summed over threads (per-thread clocks)
+  double serial_ms = 0.0;    // of cpu_ms, the caller's thread outside parallel sections: the part
+                             // threads cannot spread (on T cores a frame takes >= serial + (cpu - serial) / T)
 
   void add(const SceneStats& o);  // sums counters and times (for totals over frames)
 };
@@ -82,6 +84,9 @@ class Scene {
   // With options.coherence, a pair may be settled from its bracket of an earlier
   // call (see SceneOptions), so brackets, not decisions, depend on the history.
   std::vector<ScenePair> within(double d, SceneStats* st);
+  // The same into *out, reusing its elements' storage (a caller asking every
+  // frame passes the same vector: no per-pair allocation once warmed up).
+  void within(double d, SceneStats* st, std::vector<ScenePair>* out);
   // The k pairs of smallest upper bound (full brackets), sorted by (upper, a, b).
   std::vector<ScenePair> closest(std::size_t k, SceneStats* st);
   // The k instances nearest to instance i (a = i), sorted by (upper, b).
@@ -125,6 +130,13 @@ class Scene {
   std::vector<double> reach_;                    // per shape: max |local point| of the solid
   std::vector<PairMemory> memory_;               // within(d)'s pairs of the last call, sorted by (a, b)
   std::vector<PairMemory> memory_next_;          // storage for the next call's
+  std::vector<std::pair<std::int32_t, std::int32_t>> memory_keys_;  // memory_[k]'s (a, b)
+  std::vector<std::int32_t> memory_first_;       // per instance a: its first entry in memory_ (size n + 1)
+  // within(d)'s scratch, kept across calls (warm storage; strings keep their capacity).
+  std::vector<std::pair<std::int32_t, std::int32_t>> cand_;
+  std::vector<ScenePair> slots_;
+  std::vector<char> keep_;
+  std::vector<std::int32_t> at_;
   AabbTree tree_;
   mutable long unreported_nodes_ = 0;
 };

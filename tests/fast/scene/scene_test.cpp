@@ -13,7 +13,9 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "compare/random_geometry.h"
@@ -22,6 +24,7 @@
 #include "core/curve_eval.h"
 #include "core/input_error.h"
 #include "fast/scene/aabb_tree.h"
+#include "fast/scene/parallel.h"
 #include "fast/scene/scene.h"
 #include "../solid_test_util.h"
 
@@ -148,6 +151,9 @@ void expect_same(const std::vector<ScenePair>& x, const std::vector<ScenePair>& 
     EXPECT_EQ(x[i].result.point_a, y[i].result.point_a);
     EXPECT_EQ(x[i].result.point_b, y[i].result.point_b);
     EXPECT_EQ(x[i].result.overlap, y[i].result.overlap);
+    EXPECT_EQ(x[i].result.decided, y[i].result.decided);
+    EXPECT_EQ(x[i].result.converged, y[i].result.converged);
+    EXPECT_EQ(x[i].result.reason, y[i].result.reason);
     EXPECT_EQ(x[i].within, y[i].within);
   }
 }
@@ -350,17 +356,66 @@ TEST(Scene, ThreadsGiveBitIdenticalAnswers) {
   SceneOptions one, three;
   three.threads = 3;
   Scene s1(c, one), s3(c, three);
-  for (double f : {0.0, 4.0}) {
+  std::vector<ScenePair> reused;  // s3 answers into the same vector every frame (its elements reused)
+  for (double f : {0.0, 1.0, 2.0, 4.0}) {
     SceneStats a, b;
     s1.set_frame(f, &a);
     s3.set_frame(f, &b);
-    expect_same(s1.within(0.3, &a), s3.within(0.3, &b));
+    s3.within(0.3, &b, &reused);
+    expect_same(s1.within(0.3, &a), reused);
+    EXPECT_EQ(a.pairs_coherent, b.pairs_coherent);
     expect_same(s1.closest(5, &a), s3.closest(5, &b));
     expect_same(s1.nearest(2, 4, &a), s3.nearest(2, 4, &b));
     EXPECT_EQ(a.pairs_tested, b.pairs_tested);
     EXPECT_EQ(a.pairs_threshold, b.pairs_threshold);
     EXPECT_EQ(a.narrow_calls, b.narrow_calls);
     EXPECT_EQ(a.node_pairs, b.node_pairs);
+  }
+}
+
+// The worker pool: every index exactly once, for any thread count, call
+// after call (the workers persist), with a caller's nested call and with two
+// callers at once (one of which finds the pool busy and uses threads of its own).
+TEST(ParallelFor, ThreadsRunEveryIndexOnce) {
+  for (int threads : {1, 2, 3, 8}) {
+    for (std::size_t n : {0u, 1u, 5u, 1000u}) {
+      std::vector<int> hits(n, 0);
+      parallel_for(n, threads, [&](std::size_t i) { ++hits[i]; });
+      EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), static_cast<long>(n)) << threads << " threads, n " << n;
+    }
+  }
+  std::vector<long> sums(2, 0);
+  std::thread other([&] {
+    for (int r = 0; r < 20; ++r) {
+      std::vector<long> part(64, 0);
+      parallel_for(64, 2, [&](std::size_t i) { part[i] = static_cast<long>(i); });
+      for (long v : part) sums[1] += v;
+    }
+  });
+  for (int r = 0; r < 20; ++r) {
+    std::vector<long> inner(16, 0);
+    parallel_for_workers(16, 3, [&](std::size_t i, std::size_t w) {
+      EXPECT_LT(w, 3u);
+      std::vector<int> nested(10, 0);
+      parallel_for(10, 2, [&](std::size_t j) { nested[j] = 1; });
+      inner[i] = std::count(nested.begin(), nested.end(), 1);
+    });
+    for (long v : inner) sums[0] += v;
+  }
+  other.join();
+  EXPECT_EQ(sums[0], 20 * 16 * 10);
+  EXPECT_EQ(sums[1], 20 * (63 * 64 / 2));
+}
+
+TEST(ParallelFor, ThreadsRethrowTheFirstFailure) {
+  for (int r = 0; r < 3; ++r) {  // the pool still works after a failed job
+    EXPECT_THROW(parallel_for(100, 2, [](std::size_t i) {
+                   if (i == 57) throw std::runtime_error("index 57");
+                 }),
+                 std::runtime_error);
+    std::vector<int> hits(100, 0);
+    parallel_for(100, 2, [&](std::size_t i) { hits[i] = 1; });
+    EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), 100);
   }
 }
 
