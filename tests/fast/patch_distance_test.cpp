@@ -81,6 +81,21 @@ struct Kind {
 
 class PatchVsBrute : public testing::TestWithParam<Kind> {};
 
+// Two random patches of the given kinds, B about 2.5 times farther out.
+struct RandomPair {
+  Arc2 aa, ab;
+  Patch A, B;
+};
+RandomPair random_pair(std::mt19937_64& g, const Kind& k) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  RandomPair p;
+  p.aa = random_arc(g, k.a_straight);
+  p.ab = random_arc(g, k.b_straight);
+  p.A = make_patch(p.aa, random_rotation(g), Vec3(U(g), U(g), U(g)));
+  p.B = make_patch(p.ab, random_rotation(g), Vec3(U(g), U(g), U(g)) * 2.5);
+  return p;
+}
+
 TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
   const Kind k = GetParam();
   std::mt19937_64 g(seed() + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
@@ -89,9 +104,9 @@ TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
   int separated = 0, crossing = 0;
   double worst_gap = 0, worst_on = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    const Arc2 aa = random_arc(g, k.a_straight), ab = random_arc(g, k.b_straight);
-    const Patch A = make_patch(aa, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Patch B = make_patch(ab, random_rotation(g), Vec3(U(g), U(g), U(g)) * 2.5);
+    const RandomPair p = random_pair(g, k);
+    const Arc2& aa = p.aa;
+    const Patch &A = p.A, &B = p.B;
     const PatchPairResult r = patch_pair_distance(A, B);
     ASSERT_TRUE(r.found);
     // Coordinates here are O(4): rounding allowances are k ulps of the largest one.
@@ -258,7 +273,9 @@ TEST(PatchesAtLeast, NeverAboveAGenuinePairNearContact) {
       if (delta > 0) {
         const bool ok = patches_at_least(A, B, 0.5 * delta, margin, 128, &lower);
         proven[k] += ok;
-        if (ok) EXPECT_LE(lower, above) << "trial " << trial << " gap " << delta;
+        if (ok) {
+          EXPECT_LE(lower, above) << "trial " << trial << " gap " << delta;
+        }
       }
     }
   }
@@ -347,9 +364,9 @@ TEST_P(PatchVsBrute, LocalProofNeverAboveTheTruth) {
   std::uniform_real_distribution<double> U(-1, 1);
   int separated = 0, proven_below = 0, crossing = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    const Arc2 aa = random_arc(g, k.a_straight), ab = random_arc(g, k.b_straight);
-    const Patch A = make_patch(aa, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Patch B = make_patch(ab, random_rotation(g), Vec3(U(g), U(g), U(g)) * 2.5);
+    const RandomPair p = random_pair(g, k);
+    const Arc2& aa = p.aa;
+    const Patch &A = p.A, &B = p.B;
     const PatchPairResult r = patch_pair_distance(A, B);
     ASSERT_TRUE(r.found);
     // Coordinates are O(4); the margin covers the evaluations' rounding (a
