@@ -67,7 +67,7 @@ MUTANTS = [
      "d2 = std::abs(Rp - Rq) - offset;", "d2 = std::abs(Rp - Rq) + offset;",
      "circle kernel: nested parallel circles, offset added (sign flip)"),
     ("skip_boundary_interior_a", "fast/patch_distance.cpp",
-     "for (const auto& e : ea_c) boundary_vs_interior(c, e, true);", "",
+     "if (a_out[i]) boundary_vs_interior(c, ea_c[i], true);", "if (false) boundary_vs_interior(c, ea_c[i], true);",
      "patch kernel skips A's boundary circles against B's interior"),
     ("skip_interior_interior", "fast/patch_distance.cpp",
      "interior_vs_interior(c, disk_lb);", "",
@@ -84,6 +84,18 @@ MUTANTS = [
     ("spiral_skip_kappa_prime", "fast/spiral_split.cpp",
      "for (int f = 0; f < 4; ++f) {", "for (int f = 0; f < 3; ++f) {",
      "spiral split ignores zeros of the curvature's derivative"),
+    ("gauss_no_mirror", "fast/patch_distance.cpp",
+     "for (const Vec2 qs : {q, Vec2(-q.x(), q.y())}) {", "for (const Vec2 qs : {q}) {",
+     "Gauss-map window test forgets lines that run past the patch's axis (drops the closest binormal)"),
+    ("local_balls_too_small", "fast/patch_distance.cpp",
+     "const double r = prof + azi;  // every point", "const double r = 0.25 * (prof + azi);  // every point",
+     "local proof: balls too small to hold their boxes (first-order bound too high)"),
+    ("local_no_curvature_term", "fast/patch_distance.cpp",
+     "+ 0.5 * lam * a * a - rest);", ");",
+     "local proof: second-order bound without its curvature terms"),
+    ("local_window_ignores_ball", "fast/patch_distance.cpp",
+     "active = cos_lim <= 1e-12 || c >= cos_lim - 1e-12;", "active = c >= cos_h;",
+     "local proof: the arc's interior piece dropped from boxes whose centre is outside the arc's window"),
 ]
 
 
