@@ -93,9 +93,9 @@ MUTANTS = [
     ("local_no_curvature_term", "fast/patch_distance.cpp",
      "+ 0.5 * lam * a * a - rest);", ");",
      "local proof: second-order bound without its curvature terms"),
-    ("local_window_ignores_ball", "fast/patch_distance.cpp",
-     "active = cos_lim <= 1e-12 || c >= cos_lim - 1e-12;", "active = c >= cos_h;",
-     "local proof: the arc's interior piece dropped from boxes whose centre is outside the arc's window"),
+    ("local_no_interior_piece", "fast/patch_distance.cpp",
+     "      if (active) {", "      if (false) {",
+     "local proof: the distance to the arc's circle left out (ends only)"),
 ]
 
 
