@@ -15,8 +15,8 @@
 //    copy on a near-contact motion (gap 1 % of the size, or 10 % when apart;
 //    full distance at tol 2 eps, or the predicate "closer than 2 % of the
 //    size?"); counters: per-frame CPU
-//    medians/p90 of blend + rebuild + query and of the query alone, and the
-//    nodes built (tree + query).
+//    medians/p90 of blend + rebuild + query, of the query alone, of blend +
+//    rebuild, of the whole profile's spiral split, and the nodes built (tree + query).
 //  - BM_SceneDeforming/lazy: frames of a 20 x 20 grid of deforming `morph`
 //    instances (time_rate), all pairs within 0.1, eager or lazy trees.
 // REVDIST_SEED overrides the motion seed.
@@ -39,6 +39,7 @@
 #include "core/case_io.h"
 #include "fast/scene/parallel.h"
 #include "fast/scene/scene.h"
+#include "fast/spiral_split.h"
 
 namespace {
 
@@ -240,7 +241,8 @@ void BM_DeformableFrame(benchmark::State& state) {
   if (predicate) o.threshold = 2e-2 * m.size;  // "closer than 2 % of the size?"
   Profile profile;
   BiarcTree tree;
-  std::vector<double> frame_us, query_us, nodes;
+  std::vector<double> frame_us, query_us, nodes, split_us;
+  std::vector<SpiralSpan> spirals;  // the spiral split alone, timed apart (outside the frame)
   std::size_t j = 0;
   for (auto _ : state) {
     const MotionFrame& f = m.frames[j];
@@ -259,10 +261,19 @@ void BM_DeformableFrame(benchmark::State& state) {
     frame_us.push_back(1e6 * (t2 - t0));
     query_us.push_back(1e6 * (t2 - t1));
     nodes.push_back(static_cast<double>(tree.nodes.size() + r.stats.nodes_built));
+    const double t3 = thread_cpu_seconds();
+    split_into_spirals(profile, spirals);
+    split_us.push_back(1e6 * (thread_cpu_seconds() - t3));
   }
   state.counters["frame_us_median"] = quantile(frame_us, 0.5);
   state.counters["frame_us_p90"] = quantile(frame_us, 0.9);
   state.counters["query_us_median"] = quantile(query_us, 0.5);
+  // Blend + build: what laziness can save; the spiral split of the whole
+  // profile is part of it either way (the tree's top is made of the spirals).
+  std::vector<double> build_us(frame_us.size());
+  for (std::size_t i = 0; i < frame_us.size(); ++i) build_us[i] = frame_us[i] - query_us[i];
+  state.counters["build_us_median"] = quantile(build_us, 0.5);
+  state.counters["spiral_split_us_median"] = quantile(split_us, 0.5);
   state.counters["nodes_built_median"] = quantile(nodes, 0.5);
 }
 
