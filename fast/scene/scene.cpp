@@ -405,10 +405,16 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
       for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
     parallel_section(st, [&] { return build_stale(touched, st); });
   }
-  if (slots_.size() < cand.size()) slots_.resize(cand.size());
+  // Room to grow by a quarter: a frame with a few more candidates than any
+  // before would otherwise move every element (serially) to a new array.
+  auto fit = [](auto& v, std::size_t size) {
+    if (v.capacity() < size) v.reserve(size + size / 4);
+    v.resize(size);
+  };
+  if (slots_.size() < cand.size()) fit(slots_, cand.size());
   // This call's memory, in the storage of the call before last (no reallocation once warmed up).
   std::vector<PairMemory>& memory = memory_next_;
-  memory.resize(cand.size());
+  fit(memory, cand.size());
   keep_.resize(cand.size());
   struct alignas(64) Counts {  // per worker: integer sums, the same in any order
     long coherent = 0, narrow_calls = 0, node_pairs = 0, nodes_built = 0, threshold = 0;
@@ -479,7 +485,7 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
     at[k] = kept;
     kept += keep_[k];
   }
-  out->resize(static_cast<std::size_t>(kept));
+  fit(*out, static_cast<std::size_t>(kept));
   parallel_section(st, [&] { return parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
     if (keep_[k]) (*out)[at[k]] = std::move(slots_[k]);
   }); });
