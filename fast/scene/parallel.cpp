@@ -148,8 +148,24 @@ class Pool {
 };
 
 thread_local bool in_pool_job = false;  // nested calls run on threads of their own
+thread_local double parallel_seconds = 0.0;  // thread_parallel_seconds()
+thread_local int call_depth = 0;
+
+// Adds the calling thread's CPU time in its outermost parallel_for call to parallel_seconds.
+class CallClock {
+ public:
+  CallClock() : t0_(call_depth++ == 0 ? thread_cpu_seconds() : -1.0) {}
+  ~CallClock() {
+    --call_depth;
+    if (t0_ >= 0) parallel_seconds += thread_cpu_seconds() - t0_;
+  }
+
+ private:
+  double t0_;
+};
 
 double run_job(std::size_t n, int threads, const WorkerFn& fn) {
+  const CallClock clock;
   const std::size_t workers = std::max<std::size_t>(1, std::min<std::size_t>(threads < 1 ? 1 : threads, n));
   Job job(n, workers, fn);
   if (workers == 1) {
@@ -170,6 +186,8 @@ double run_job(std::size_t n, int threads, const WorkerFn& fn) {
 }
 
 }  // namespace
+
+double thread_parallel_seconds() { return parallel_seconds; }
 
 double parallel_for(std::size_t n, int threads, const std::function<void(std::size_t)>& fn) {
   return run_job(n, threads, [&fn](std::size_t i, std::size_t) { fn(i); });

@@ -21,4 +21,9 @@ double parallel_for_workers(std::size_t n, int threads, const std::function<void
 // CPU seconds used so far by the calling thread.
 double thread_cpu_seconds();
 
+// Of those, the seconds spent inside the parallel_for calls it made (the
+// outermost ones, whatever their thread count): the rest of its work is what
+// more threads cannot share.
+double thread_parallel_seconds();
+
 }  // namespace revdist
