@@ -35,8 +35,10 @@ class Job {
       blocks_[w].next.store(n * w / workers, std::memory_order_relaxed);
       blocks_[w].end = n * (w + 1) / workers;
     }
-    // Small chunks: narrow-phase pairs differ in cost by orders of magnitude.
-    chunk_ = std::max<std::size_t>(1, std::min<std::size_t>(16, n / (8 * workers)));
+    // Small chunks: narrow-phase pairs differ in cost by orders of magnitude
+    // (a chunk of 16 pairs near the threshold is milliseconds of one worker at
+    // the end of a step); a worker's own cursor is not contended until stealing.
+    chunk_ = std::max<std::size_t>(1, std::min<std::size_t>(4, n / (8 * workers)));
   }
   std::size_t workers() const { return blocks_.size(); }
 
