@@ -26,4 +26,10 @@ double thread_cpu_seconds();
 // more threads cannot share.
 double thread_parallel_seconds();
 
+// Over the same calls, the sum of each call's largest per-worker CPU time:
+// with the serial part, what the calls would take on as many free cores
+// (a measure of imbalance that a loaded machine does not distort much, as
+// stealing splits the work by how fast the workers progress).
+double thread_span_seconds();
+
 }  // namespace revdist

@@ -26,18 +26,24 @@ using PairKey = std::pair<std::int32_t, std::int32_t>;
 class StepTimer {
  public:
   explicit StepTimer(SceneStats* st)
-      : st_(st), wall0_(std::chrono::steady_clock::now()), cpu0_(thread_cpu_seconds()), par0_(thread_parallel_seconds()) {}
+      : st_(st),
+        wall0_(std::chrono::steady_clock::now()),
+        cpu0_(thread_cpu_seconds()),
+        par0_(thread_parallel_seconds()),
+        span0_(thread_span_seconds()) {}
   ~StepTimer() {
     st_->time_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0_).count();
     const double own = thread_cpu_seconds() - cpu0_;
+    const double serial = own - (thread_parallel_seconds() - par0_);
     st_->cpu_ms += 1e3 * own;
-    st_->serial_ms += 1e3 * (own - (thread_parallel_seconds() - par0_));
+    st_->serial_ms += 1e3 * serial;
+    st_->span_ms += 1e3 * (serial + thread_span_seconds() - span0_);
   }
 
  private:
   SceneStats* st_;
   std::chrono::steady_clock::time_point wall0_;
-  double cpu0_, par0_;
+  double cpu0_, par0_, span0_;
 };
 
 // A parallel step inside a StepTimer's: run() returns the other workers' CPU seconds.
@@ -167,6 +173,7 @@ void SceneStats::add(const SceneStats& o) {
   time_ms += o.time_ms;
   cpu_ms += o.cpu_ms;
   serial_ms += o.serial_ms;
+  span_ms += o.span_ms;
 }
 
 Scene::Scene(const Case& c, const SceneOptions& options)
