@@ -602,9 +602,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // Boxes carry the cosines and sines of their middle angles (azimuth, and
   // the arc's angle at the middle profile fraction), updated by angle
   // addition with the half-widths of each level, computed once a level.
-  // Best first (smallest bound of the parent box): a point closer than the
-  // cut, which ends the proof, is met soonest. The sectors come first.
-  struct Box { double key, um, du, cu, su, tm, dt, ct, st; int lu, lt; };
+  struct Box { double um, du, cu, su, tm, dt, ct, st; int lu, lt; };
   struct HalfAngle { double c, s; };
   HalfAngle hu[64], ht[64];  // level k: half of the level's half-width
   int nu = 0, nt = 0;
@@ -617,9 +615,8 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     }
     return table[level];
   };
-  constexpr int kOpen = 256;
+  constexpr int kOpen = 64;  // depth first: the stack holds the sectors and one path
   Box open[kOpen];
-  auto later = [](const Box& x, const Box& y) { return x.key > y.key; };
   int n = 0, evals = 0;
   auto done = [&](bool ok) {
     if (evals_out) *evals_out = evals;
@@ -629,15 +626,14 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   const double cu0 = std::cos(0.5 * sweep), su0 = std::sin(0.5 * sweep);
   for (int k = kSectors - 1; k >= 0; --k) {
     const double tm = -M_PI + (k + 0.5) * (2 * M_PI / kSectors);
-    open[n++] = {-std::numeric_limits<double>::infinity(), 0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
+    open[n++] = {0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
   }
   double least = std::numeric_limits<double>::infinity();
   while (n > 0) {
-    std::pop_heap(open, open + n, later);
     const Box b = open[--n];
     if (++evals > budget) return done(false);
     const double du = b.du, dt = b.dt;
-    Vec2 q, qu, quu(0, 0);
+    Vec2 q, qu;
     if (P.straight) {
       qu = P.p1 - P.p0;
       q = P.p0 + b.um * qu;
@@ -645,7 +641,6 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       const Vec2 d(b.cu * P.d0.x() - b.su * P.d0.y(), b.su * P.d0.x() + b.cu * P.d0.y());
       q = P.c + P.rho * d;
       qu = P.rho * P.sweep * Vec2(-d.y(), d.x());
-      quu = -P.rho * P.sweep * P.sweep * d;
     }
     const bool clamped = q.x() < 0;
     q.x() = std::max(q.x(), 0.0);
@@ -663,52 +658,28 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
     const double a = len * du + rmax * dt;
     const double rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
-    // The signed form: x's second derivatives at the centre (x_uu, x_ut,
-    // x_tt) and how far they move over the box (x3: |x''(s) - x''(0)| along
-    // any path of the box; |q'''| = curv |sweep|, |e(t) - e(tm)| <= dt).
-    const Vec3 xuu = quu.x() * er + quu.y() * P.a, xut = qu.x() * et, xtt = -q.x() * er;
-    const double sw = std::abs(sweep);
-    const double x3 = curv * (sw * du + dt) * du * du + 2 * (curv * du + len * dt) * du * dt + (len * du + rmax * dt) * dt * dt;
-    // min over |d| <= w of G d + m d^2 / 2.
-    auto edge = [](double G, double m, double w) {
-      if (m > 0 && std::abs(G) < m * w) return -0.5 * G * G / m;
-      return -std::abs(G) * w + 0.5 * m * w * w;
-    };
     double lb = std::numeric_limits<double>::infinity();
     double truth = lb;  // the distance from x itself to Q's patch
     // A piece of value f, unit gradient grad (in Q's (rho, z)) and a lower
     // bound lam <= 0 on its Hessian's eigenvalues over the ball (NaN: not
-    // smooth there). For the circle's and the line's pieces f = |s| >= sign(s(x)) s,
-    // and the second-order bound is that of the smooth sign(s(x)) s (s may
-    // change sign in the box: the bound is then below 0). Only a lower bound on f is wanted, so only the Hessian's
-    // negative part counts: in cylindrical coordinates about Q's axis the
-    // Hessian of a function of (rho, z) is its plane Hessian plus f_rho / rho
-    // about the axis, and the plane Hessian of a distance to a point is
-    // positive semi-definite, of |n . q - off| zero.
-    //
-    // Where the piece is C2 over the ball with |Hessian| <= H2 (its gradient
-    // then moves by at most H2 r), the curvature of P enters with its sign:
-    // along a path of the box, phi'' >= lam a^2 + g . x''(centre) - H2 r |x''|
-    // - x3, and g . x''(centre) is the quadratic form (g.x_uu, g.x_ut, g.x_tt)
-    // in the path's (du, dt); with the first-order terms its minimum over the
-    // box separates into u and t (the cross term bounded by its size). A
-    // surface curving away from Q (g . x_tt > 0 at a convex contact) then
-    // pays G^2 / 2m rather than |G| times the box.
-    auto piece = [&](double f, const Vec2& grad, double lam, double H2) {
+    // smooth there). For the circle's and the line's pieces f = |s| >=
+    // sign(s(x)) s, and the bound is that of the smooth sign(s(x)) s (s may
+    // change sign in the box: the bound is then below 0). Only a lower bound
+    // on f is wanted, so only the Hessian's negative part counts: in
+    // cylindrical coordinates about Q's axis the Hessian of a function of
+    // (rho, z) is its plane Hessian plus f_rho / rho about the axis, and the
+    // plane Hessian of a distance to a point is positive semi-definite, of
+    // |n . q - off| zero. (A signed form, with P's own curvature and the
+    // gradient's movement over the ball, proves smaller gaps in fewer boxes
+    // but cost more than it saved on the bench's motion: +4 % instructions.)
+    auto piece = [&](double f, const Vec2& grad, double lam) {
       double bound = f - r;
       if (bound - margin < cut && smooth_box && !std::isnan(lam)) {
         const Vec3 g = grad.x() * erq + grad.y() * Q.a;
-        const double Gu = g.dot(xu), Gt = g.dot(xt);
-        bound = std::max(bound, f - std::abs(Gu) * du - std::abs(Gt) * dt + 0.5 * lam * a * a - rest);
-        if (std::isfinite(H2)) {
-          const double signed_bound = f + edge(Gu, g.dot(xuu), du) + edge(Gt, g.dot(xtt), dt) -
-                                      std::abs(g.dot(xut)) * du * dt + 0.5 * lam * a * a - H2 * r * rest - 0.5 * x3;
-          bound = std::max(bound, signed_bound);
-        }
+        bound = std::max(bound, f - std::abs(g.dot(xu)) * du - std::abs(g.dot(xt)) * dt + 0.5 * lam * a * a - rest);
       }
       lb = std::min(lb, bound - margin);
     };
-    const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // f_rho / rho for the distance to a point at radius pr of Q's half-plane,
     // over the ball (f >= f_min, rho >= rho_min > 0): f_rho = (rho - pr) / f.
@@ -722,8 +693,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       truth = std::min(truth, f);
       // A pole (pr = 0) is a point: smooth wherever f > 0.
       const bool smooth = f - r > 0 && (pe.x() <= 0 || rho_min > 0);
-      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan,
-            smooth ? 1.0 / (f - r) + (pe.x() <= 0 ? 0.0 : 1.0 / rho_min) : inf);
+      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan);
     }
     if (Q.straight) {
       if (seg_len > 0) {
@@ -733,8 +703,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
           // Hessian sign(s) n_r / rho about the axis.
           const double nr = s >= 0 ? Q.n.x() : -Q.n.x();
           const bool smooth = nr >= 0 || rho_min > 0;
-          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan,
-                Q.n.x() == 0 ? 0.0 : rho_min > 0 ? std::abs(Q.n.x()) / rho_min : inf);
+          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan);
         }
       }
     } else {
@@ -759,8 +728,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
           if (s > 0) lam = Q.c.x() == 0 ? 0.0 : azimuthal(Q.c.x(), D_min);
           else lam = -1.0 / D_min - (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
         }
-        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam,
-              smooth ? 1.0 / D_min + (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min) : inf);
+        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam);
       }
     }
     if (truth < cut) return done(false);  // a point of P is closer: not provable
@@ -775,16 +743,14 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     if (prof >= azi) {
       const HalfAngle h = half_angle(hu, &nu, b.lu, 0.5 * sweep);
       for (double sgn : {-1.0, 1.0}) {
-        open[n++] = {lb, b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
+        open[n++] = {b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
                      b.tm, dt, ct, st, b.lu + 1, b.lt};
-        std::push_heap(open, open + n, later);
       }
     } else {
       const HalfAngle h = half_angle(ht, &nt, b.lt, M_PI / kSectors);
       for (double sgn : {-1.0, 1.0}) {
-        open[n++] = {lb, b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
+        open[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
                      st * h.c + sgn * ct * h.s, b.lu, b.lt + 1};
-        std::push_heap(open, open + n, later);
       }
     }
   }

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <string>
 #include <vector>
 
 #include "core/curve_eval.h"
@@ -330,12 +331,14 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
   }
 
-  // A threshold query answered "closer" needs only one witness pair below the
-  // threshold: a few rounds of alternating projection onto the surfaces, from
-  // the closest pair of the root disks' circles, usually find one, and the
-  // best-first loop below, which would first tighten every bound under the
-  // threshold, then stops at once.
-  if (threshold) {
+  // A witness pair before the traversal: a few rounds of alternating
+  // projection onto the surfaces, from the closest pair of the root disks'
+  // circles. A threshold query answered "closer" needs only one pair below the
+  // threshold, and the best-first loop below, which would first tighten every
+  // bound under the threshold, then stops at once; any other query starts
+  // with an upper bound near the distance, so the local proofs of the first
+  // leaf pairs can pass (measured: 5 % fewer instructions on the motion probe).
+  {
     Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
     for (int i = 0; i < 3 && !(ub <= opt.threshold); ++i) {
       const Vec3 x = A.nearest_surface_point(y);
@@ -418,8 +421,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         continue;
       }
     }
-    if (++st.node_pairs > opt.max_node_pairs) {
-      res.reason = "work budget exhausted";
+    const bool out_of_kernels = st.patch_pairs >= opt.max_patch_pairs;
+    if (++st.node_pairs > opt.max_node_pairs || out_of_kernels) {
+      res.reason = out_of_kernels ? "work budget exhausted: " + std::to_string(st.patch_pairs) + " patch-pair kernels (max_patch_pairs)"
+                                  : "work budget exhausted: " + std::to_string(opt.max_node_pairs) + " node pairs (max_node_pairs)";
       settled_lb = std::min(settled_lb, e.lb);
       unresolved = true;
       break;
@@ -580,6 +585,9 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       res.reason = "containment undecided: a surface point of one solid lies within rounding of the other's boundary";
   }
   lb = std::max(lb, 0.0);
+  // A stop before any candidate (a small budget) still owes a finite
+  // bracket: any two genuine surface points bound the distance from above.
+  if (!(ub < kInf)) offer(A.some_surface_point(), B.some_surface_point());
   if (!(ub < kInf)) {
     res.reason = "no candidate pair found";
     res.lower = lb;

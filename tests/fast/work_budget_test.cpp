@@ -1,0 +1,71 @@
+// The fast query's work budget (fast/solid_distance.h: max_node_pairs,
+// max_patch_pairs): a query that cannot converge ends within it, says which
+// budget ran out, and still returns a finite bracket that holds the distance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/case_io.h"
+#include "fast/case_model.h"
+#include "fast/solid_distance.h"
+
+namespace revdist {
+namespace {
+
+std::string source(const std::string& rel) { return std::string(REVDIST_SOURCE_DIR) + "/" + rel; }
+
+// A rod in a cup, nested near-parallel cones (see the file's comment): it ran
+// for minutes; now it converges or ends within the kernel budget, and a small
+// kernel budget ends it at once, naming itself, with a bracket that still
+// holds exact/'s certified interval [0.099984462, 0.099984933].
+TEST(WorkBudget, NestedNearParallelConesEndWithinTheKernelBudget) {
+  const Case c = read_case(source("cases/regressions/budget_nested_near_parallel_cones.json"));
+  const CaseModel m = build_case_model(c, 1e-5);
+  for (const long budget : {DistanceOptions{}.max_patch_pairs, 50L}) {
+    DistanceOptions o;
+    o.max_patch_pairs = budget;
+    const SolidDistanceResult r = solid_distance(m.instances[0], m.instances[1], o);
+    std::printf("[ query    ] budget %ld: [%.17g, %.17g] %ld node pairs, %ld patch pairs: %s\n", budget, r.lower, r.upper,
+                r.stats.node_pairs, r.stats.patch_pairs, r.reason.c_str());
+    SCOPED_TRACE("max_patch_pairs " + std::to_string(budget) + ": " + r.reason);
+    if (!r.converged) { EXPECT_NE(r.reason.find("max_patch_pairs"), std::string::npos); }
+    if (budget == 50) { EXPECT_FALSE(r.converged) << "measured: ~270 kernels needed"; }
+    // A leaf pair holds at most 2 x 2 arc pairs, so the count stops within 4 of the budget.
+    EXPECT_LE(r.stats.patch_pairs, budget + 4);
+    EXPECT_LE(r.lower, 0.099984933);
+    EXPECT_GE(r.upper, 0.099984462);
+    EXPECT_LE(r.upper, 0.1);
+  }
+}
+
+// Each budget names itself, and the bracket at the stop is finite and ordered.
+TEST(WorkBudget, EachBudgetSaysWhatRanOut) {
+  const Case c = read_case(source("cases/models/paper_pairs.json"));
+  const CaseModel m = build_case_model(c, 1e-5);
+  const auto [ia, ib] = c.queries.front();
+  DistanceOptions full;
+  full.tol = 1e-9;
+  const SolidDistanceResult ref = solid_distance(m.instances[ia], m.instances[ib], full);
+  ASSERT_TRUE(ref.converged) << ref.reason;
+  for (const bool kernels : {false, true}) {
+    DistanceOptions o = full;
+    if (kernels) o.max_patch_pairs = 3;
+    else o.max_node_pairs = 20;
+    const SolidDistanceResult r = solid_distance(m.instances[ia], m.instances[ib], o);
+    SCOPED_TRACE(r.reason);
+    EXPECT_FALSE(r.converged);
+    EXPECT_NE(r.reason.find(kernels ? "max_patch_pairs" : "max_node_pairs"), std::string::npos);
+    EXPECT_TRUE(std::isfinite(r.lower) && std::isfinite(r.upper));
+    EXPECT_LE(r.lower, r.upper);
+    // Both brackets hold the distance (the reference is 1e-9 wide).
+    EXPECT_LE(r.lower, ref.upper);
+    EXPECT_GE(r.upper, ref.lower);
+    if (kernels) { EXPECT_LE(r.stats.patch_pairs, 3 + 4); }
+    else { EXPECT_LE(r.stats.node_pairs, 21); }
+  }
+}
+
+}  // namespace
+}  // namespace revdist
