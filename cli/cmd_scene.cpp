@@ -48,7 +48,7 @@ Json stats_json(const SceneStats& s) {
           {"node_pairs", s.node_pairs},      {"nodes_built", s.nodes_built},
           {"broad_nodes", s.broad_nodes},    {"broad_rebuilt", s.broad_rebuilt},
           {"time_ms", s.time_ms},            {"cpu_ms", s.cpu_ms},
-          {"serial_ms", s.serial_ms}};
+          {"serial_ms", s.serial_ms},        {"span_ms", s.span_ms}};
 }
 
 double percentile(std::vector<double> v, double p) {

@@ -15,8 +15,8 @@
 //    copy on a near-contact motion (gap 1 % of the size, or 10 % when apart;
 //    full distance at tol 2 eps, or the predicate "closer than 2 % of the
 //    size?"); counters: per-frame CPU
-//    medians/p90 of blend + rebuild + query and of the query alone, and the
-//    nodes built (tree + query).
+//    medians/p90 of blend + rebuild + query, of the query alone, of blend +
+//    rebuild, of the whole profile's spiral split, and the nodes built (tree + query).
 //  - BM_SceneDeforming/lazy: frames of a 20 x 20 grid of deforming `morph`
 //    instances (time_rate), all pairs within 0.1, eager or lazy trees.
 // REVDIST_SEED overrides the motion seed.
@@ -39,6 +39,7 @@
 #include "core/case_io.h"
 #include "fast/scene/parallel.h"
 #include "fast/scene/scene.h"
+#include "fast/spiral_split.h"
 
 namespace {
 
@@ -112,7 +113,7 @@ void BM_SceneScaling(benchmark::State& state) {
   SceneOptions o1, o2;
   o2.threads = 2;
   Scene s1(c, o1), s2(c, o2);
-  std::vector<double> wall[2], cpu[2], serial[2];
+  std::vector<double> wall[2], cpu[2], serial[2], span[2];
   std::vector<ScenePair> pairs[2];
   long frame = 0, differ = 0;
   const double load0 = load_average();
@@ -127,6 +128,7 @@ void BM_SceneScaling(benchmark::State& state) {
       wall[k].push_back(st.time_ms);
       cpu[k].push_back(st.cpu_ms);
       serial[k].push_back(st.serial_ms);
+      span[k].push_back(st.span_ms);
     }
     differ += pairs[0].size() != pairs[1].size();
     for (std::size_t i = 0; i < std::min(pairs[0].size(), pairs[1].size()); ++i)
@@ -147,6 +149,10 @@ void BM_SceneScaling(benchmark::State& state) {
     state.counters["serial_ms_median" + t] = quantile(serial[k], 0.5);
   }
   state.counters["scaling"] = sum(wall[0]) / sum(wall[1]);
+  // Per-thread CPU: 1 thread's CPU over the 2-thread frames' span (serial part
+  // plus each step's busiest worker), the scaling on two free cores, wake-ups aside.
+  state.counters["span_ms_median_2t"] = quantile(span[1], 0.5);
+  state.counters["span_scaling"] = sum(cpu[0]) / sum(span[1]);
   state.counters["cpu_ratio"] = sum(cpu[1]) / sum(cpu[0]);
   const double share = sum(serial[1]) / sum(cpu[1]);
   state.counters["serial_share_2t"] = share;
@@ -240,7 +246,8 @@ void BM_DeformableFrame(benchmark::State& state) {
   if (predicate) o.threshold = 2e-2 * m.size;  // "closer than 2 % of the size?"
   Profile profile;
   BiarcTree tree;
-  std::vector<double> frame_us, query_us, nodes;
+  std::vector<double> frame_us, query_us, nodes, split_us;
+  std::vector<SpiralSpan> spirals;  // the spiral split alone, timed apart (outside the frame)
   std::size_t j = 0;
   for (auto _ : state) {
     const MotionFrame& f = m.frames[j];
@@ -259,10 +266,19 @@ void BM_DeformableFrame(benchmark::State& state) {
     frame_us.push_back(1e6 * (t2 - t0));
     query_us.push_back(1e6 * (t2 - t1));
     nodes.push_back(static_cast<double>(tree.nodes.size() + r.stats.nodes_built));
+    const double t3 = thread_cpu_seconds();
+    split_into_spirals(profile, spirals);
+    split_us.push_back(1e6 * (thread_cpu_seconds() - t3));
   }
   state.counters["frame_us_median"] = quantile(frame_us, 0.5);
   state.counters["frame_us_p90"] = quantile(frame_us, 0.9);
   state.counters["query_us_median"] = quantile(query_us, 0.5);
+  // Blend + build: what laziness can save; the spiral split of the whole
+  // profile is part of it either way (the tree's top is made of the spirals).
+  std::vector<double> build_us(frame_us.size());
+  for (std::size_t i = 0; i < frame_us.size(); ++i) build_us[i] = frame_us[i] - query_us[i];
+  state.counters["build_us_median"] = quantile(build_us, 0.5);
+  state.counters["spiral_split_us_median"] = quantile(split_us, 0.5);
   state.counters["nodes_built_median"] = quantile(nodes, 0.5);
 }
 

@@ -422,9 +422,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       }
     }
     const bool out_of_kernels = st.patch_pairs >= opt.max_patch_pairs;
-    if (++st.node_pairs > opt.max_node_pairs || out_of_kernels) {
-      res.reason = out_of_kernels ? "work budget exhausted: " + std::to_string(st.patch_pairs) + " patch-pair kernels (max_patch_pairs)"
-                                  : "work budget exhausted: " + std::to_string(opt.max_node_pairs) + " node pairs (max_node_pairs)";
+    const bool out_of_leaves = st.leaf_pairs >= opt.max_leaf_pairs;
+    if (++st.node_pairs > opt.max_node_pairs || out_of_kernels || out_of_leaves) {
+      res.reason = out_of_kernels  ? "work budget exhausted: " + std::to_string(st.patch_pairs) + " patch-pair kernels (max_patch_pairs)"
+                   : out_of_leaves ? "work budget exhausted: " + std::to_string(st.leaf_pairs) + " leaf pairs (max_leaf_pairs)"
+                                   : "work budget exhausted: " + std::to_string(opt.max_node_pairs) + " node pairs (max_node_pairs)";
       settled_lb = std::min(settled_lb, e.lb);
       unresolved = true;
       break;

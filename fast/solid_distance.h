@@ -36,8 +36,12 @@ struct DistanceOptions {
   // Work budget; beyond either the result says converged = false and which ran
   // out. Patch-pair kernels are the costly unit (~30 us each, up to ~140 us on
   // near-degenerate cone pairs): 10,000 of them end a query within ~1.5 s.
+  // Leaf pairs (fit pairs compared) cost more the more a query has (each
+  // scans the bounds of those before it for its neighbours'): bottle-bottle2
+  // at eps 1e-11 needs 15,000 (0.6 s, 14 us each), so 25,000 is ~1.5 s.
   long max_node_pairs = 1000000;
   long max_patch_pairs = 10000;
+  long max_leaf_pairs = 25000;
 };
 
 struct DistanceStats {

@@ -99,12 +99,9 @@ double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std:
   std::vector<std::int32_t> inner;
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     if (!nodes_[k].leaf()) inner.push_back(static_cast<std::int32_t>(k));
-  if (threads <= 1) {
-    for (std::int32_t k : inner) cross(nodes_[k].left, nodes_[k].right, d, out);
-    return 0.0;
-  }
   // Tasks in a fixed number of consecutive groups (a vector each, not one per
-  // node); the groups are then copied to their places in parallel too.
+  // node; the same groups on one thread); the groups are then copied to their
+  // places in parallel too.
   const std::size_t groups = std::min<std::size_t>(inner.size(), 64);
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> part(groups);
   double workers = parallel_for(groups, threads, [&](std::size_t g) {

@@ -28,6 +28,10 @@ namespace {
 
 using WorkerFn = std::function<void(std::size_t, std::size_t)>;
 
+thread_local double parallel_seconds = 0.0;  // thread_parallel_seconds()
+thread_local double span_seconds = 0.0;      // thread_span_seconds()
+thread_local int call_depth = 0;             // parallel_for calls under way on this thread
+
 class Job {
  public:
   Job(std::size_t n, std::size_t workers, const WorkerFn& fn) : fn_(fn), blocks_(workers), cpu_(workers, 0.0) {
@@ -35,8 +39,10 @@ class Job {
       blocks_[w].next.store(n * w / workers, std::memory_order_relaxed);
       blocks_[w].end = n * (w + 1) / workers;
     }
-    // Small chunks: narrow-phase pairs differ in cost by orders of magnitude.
-    chunk_ = std::max<std::size_t>(1, std::min<std::size_t>(16, n / (8 * workers)));
+    // Small chunks: narrow-phase pairs differ in cost by orders of magnitude
+    // (a chunk of 16 pairs near the threshold is milliseconds of one worker at
+    // the end of a step); a worker's own cursor is not contended until stealing.
+    chunk_ = std::max<std::size_t>(1, std::min<std::size_t>(4, n / (8 * workers)));
   }
   std::size_t workers() const { return blocks_.size(); }
 
@@ -62,6 +68,7 @@ class Job {
   // Rethrows the first failure; else the CPU seconds of the workers besides the caller's.
   double finish() const {
     if (error_) std::rethrow_exception(error_);
+    if (call_depth == 1) span_seconds += *std::max_element(cpu_.begin(), cpu_.end());
     double sum = 0.0;
     for (std::size_t w = 1; w < cpu_.size(); ++w) sum += cpu_[w];
     return sum;
@@ -149,7 +156,21 @@ class Pool {
 
 thread_local bool in_pool_job = false;  // nested calls run on threads of their own
 
+// Adds the calling thread's CPU time in its outermost parallel_for call to parallel_seconds.
+class CallClock {
+ public:
+  CallClock() : t0_(call_depth++ == 0 ? thread_cpu_seconds() : -1.0) {}
+  ~CallClock() {
+    --call_depth;
+    if (t0_ >= 0) parallel_seconds += thread_cpu_seconds() - t0_;
+  }
+
+ private:
+  double t0_;
+};
+
 double run_job(std::size_t n, int threads, const WorkerFn& fn) {
+  const CallClock clock;
   const std::size_t workers = std::max<std::size_t>(1, std::min<std::size_t>(threads < 1 ? 1 : threads, n));
   Job job(n, workers, fn);
   if (workers == 1) {
@@ -170,6 +191,10 @@ double run_job(std::size_t n, int threads, const WorkerFn& fn) {
 }
 
 }  // namespace
+
+double thread_parallel_seconds() { return parallel_seconds; }
+
+double thread_span_seconds() { return span_seconds; }
 
 double parallel_for(std::size_t n, int threads, const std::function<void(std::size_t)>& fn) {
   return run_job(n, threads, [&fn](std::size_t i, std::size_t) { fn(i); });

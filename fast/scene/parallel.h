@@ -21,4 +21,15 @@ double parallel_for_workers(std::size_t n, int threads, const std::function<void
 // CPU seconds used so far by the calling thread.
 double thread_cpu_seconds();
 
+// Of those, the seconds spent inside the parallel_for calls it made (the
+// outermost ones, whatever their thread count): the rest of its work is what
+// more threads cannot share.
+double thread_parallel_seconds();
+
+// Over the same calls, the sum of each call's largest per-worker CPU time:
+// with the serial part, what the calls would take on as many free cores
+// (a measure of imbalance that a loaded machine does not distort much, as
+// stealing splits the work by how fast the workers progress).
+double thread_span_seconds();
+
 }  // namespace revdist

@@ -21,30 +21,35 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 using PairKey = std::pair<std::int32_t, std::int32_t>;
 
-// Wall and CPU time of one scene step, added to the stats when it ends.
+// Wall and CPU time of one scene step, added to the stats when it ends; the
+// caller's CPU outside parallel_for calls is the step's serial part.
 class StepTimer {
  public:
-  explicit StepTimer(SceneStats* st) : st_(st), wall0_(std::chrono::steady_clock::now()), cpu0_(thread_cpu_seconds()) {}
+  explicit StepTimer(SceneStats* st)
+      : st_(st),
+        wall0_(std::chrono::steady_clock::now()),
+        cpu0_(thread_cpu_seconds()),
+        par0_(thread_parallel_seconds()),
+        span0_(thread_span_seconds()) {}
   ~StepTimer() {
     st_->time_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0_).count();
-    const double own = 1e3 * (thread_cpu_seconds() - cpu0_);
-    st_->cpu_ms += own;
-    st_->serial_ms += own;  // less the parallel sections (parallel_section)
+    const double own = thread_cpu_seconds() - cpu0_;
+    const double serial = own - (thread_parallel_seconds() - par0_);
+    st_->cpu_ms += 1e3 * own;
+    st_->serial_ms += 1e3 * serial;
+    st_->span_ms += 1e3 * (serial + thread_span_seconds() - span0_);
   }
 
  private:
   SceneStats* st_;
   std::chrono::steady_clock::time_point wall0_;
-  double cpu0_;
+  double cpu0_, par0_, span0_;
 };
 
-// A parallel section inside a StepTimer's step: run() returns the other
-// workers' CPU seconds; the caller's own share is not serial.
+// A parallel step inside a StepTimer's: run() returns the other workers' CPU seconds.
 template <class Run>
 void parallel_section(SceneStats* st, Run&& run) {
-  const double c0 = thread_cpu_seconds();
   st->cpu_ms += 1e3 * run();
-  st->serial_ms -= 1e3 * (thread_cpu_seconds() - c0);
 }
 
 // Orders answers for k closest: smallest upper first, then instance indices.
@@ -136,16 +141,19 @@ class NeighbourStream {
 };
 
 // Sorts pairs (a, b), a < b < n, by (a, b): counting by a (linear), then each
-// a's few partners by b.
-void sort_pairs(std::vector<PairKey>* pairs, std::size_t n) {
+// a's few partners by b (in parallel). Returns the workers' CPU seconds.
+double sort_pairs(std::vector<PairKey>* pairs, std::size_t n, int threads) {
   std::vector<std::int32_t> start(n + 1, 0);
   for (const PairKey& p : *pairs) ++start[p.first + 1];
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
   std::vector<PairKey> out(pairs->size());
   std::vector<std::int32_t> at(start.begin(), start.end() - 1);
   for (const PairKey& p : *pairs) out[at[p.first]++] = p;
-  for (std::size_t i = 0; i < n; ++i) std::sort(out.begin() + start[i], out.begin() + start[i + 1]);
-  *pairs = std::move(out);
+  const double cpu = parallel_for(n, threads, [&](std::size_t i) {
+    if (start[i + 1] - start[i] > 1) std::sort(out.begin() + start[i], out.begin() + start[i + 1]);
+  });
+  pairs->swap(out);
+  return cpu;
 }
 
 }  // namespace
@@ -165,6 +173,7 @@ void SceneStats::add(const SceneStats& o) {
   time_ms += o.time_ms;
   cpu_ms += o.cpu_ms;
   serial_ms += o.serial_ms;
+  span_ms += o.span_ms;
 }
 
 Scene::Scene(const Case& c, const SceneOptions& options)
@@ -398,17 +407,23 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
   std::vector<std::pair<std::int32_t, std::int32_t>>& cand = cand_;
   cand.clear();
   parallel_section(st, [&] { return tree_.pairs_within(d, &cand, options_.threads); });
-  sort_pairs(&cand, size());
+  parallel_section(st, [&] { return sort_pairs(&cand, size(), options_.threads); });
   {
     std::vector<std::int32_t> touched;
     if (std::find(stale_.begin(), stale_.end(), 1) != stale_.end())
       for (const auto& [a, b] : cand) touched.insert(touched.end(), {a, b});
     parallel_section(st, [&] { return build_stale(touched, st); });
   }
-  if (slots_.size() < cand.size()) slots_.resize(cand.size());
+  // Room to grow by a quarter: a frame with a few more candidates than any
+  // before would otherwise move every element (serially) to a new array.
+  auto fit = [](auto& v, std::size_t size) {
+    if (v.capacity() < size) v.reserve(size + size / 4);
+    v.resize(size);
+  };
+  if (slots_.size() < cand.size()) fit(slots_, cand.size());
   // This call's memory, in the storage of the call before last (no reallocation once warmed up).
   std::vector<PairMemory>& memory = memory_next_;
-  memory.resize(cand.size());
+  fit(memory, cand.size());
   keep_.resize(cand.size());
   struct alignas(64) Counts {  // per worker: integer sums, the same in any order
     long coherent = 0, narrow_calls = 0, node_pairs = 0, nodes_built = 0, threshold = 0;
@@ -479,7 +494,7 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
     at[k] = kept;
     kept += keep_[k];
   }
-  out->resize(static_cast<std::size_t>(kept));
+  fit(*out, static_cast<std::size_t>(kept));
   parallel_section(st, [&] { return parallel_for(cand.size(), options_.threads, [&](std::size_t k) {
     if (keep_[k]) (*out)[at[k]] = std::move(slots_[k]);
   }); });

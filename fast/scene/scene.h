@@ -58,6 +58,8 @@ struct SceneStats {
   double cpu_ms = 0.0;       // CPU time of the same, summed over threads (per-thread clocks)
   double serial_ms = 0.0;    // of cpu_ms, the caller's thread outside parallel sections: the part
                              // threads cannot spread (on T cores a frame takes >= serial + (cpu - serial) / T)
+  double span_ms = 0.0;      // serial_ms plus, per parallel step, its busiest worker's CPU: the frame's
+                             // time on free cores, wake-ups aside (cpu_ms / span_ms: what the threads gained)
 
   void add(const SceneStats& o);  // sums counters and times (for totals over frames)
 };

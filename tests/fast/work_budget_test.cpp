@@ -49,21 +49,24 @@ TEST(WorkBudget, EachBudgetSaysWhatRanOut) {
   full.tol = 1e-9;
   const SolidDistanceResult ref = solid_distance(m.instances[ia], m.instances[ib], full);
   ASSERT_TRUE(ref.converged) << ref.reason;
-  for (const bool kernels : {false, true}) {
+  for (const std::string budget : {"max_node_pairs", "max_patch_pairs", "max_leaf_pairs"}) {
     DistanceOptions o = full;
+    const bool kernels = budget == "max_patch_pairs";
     if (kernels) o.max_patch_pairs = 3;
+    else if (budget == "max_leaf_pairs") o.max_leaf_pairs = 2;
     else o.max_node_pairs = 20;
     const SolidDistanceResult r = solid_distance(m.instances[ia], m.instances[ib], o);
     SCOPED_TRACE(r.reason);
     EXPECT_FALSE(r.converged);
-    EXPECT_NE(r.reason.find(kernels ? "max_patch_pairs" : "max_node_pairs"), std::string::npos);
+    EXPECT_NE(r.reason.find(budget), std::string::npos);
+    if (budget == "max_leaf_pairs") { EXPECT_LE(r.stats.leaf_pairs, 2); }
     EXPECT_TRUE(std::isfinite(r.lower) && std::isfinite(r.upper));
     EXPECT_LE(r.lower, r.upper);
     // Both brackets hold the distance (the reference is 1e-9 wide).
     EXPECT_LE(r.lower, ref.upper);
     EXPECT_GE(r.upper, ref.lower);
     if (kernels) { EXPECT_LE(r.stats.patch_pairs, 3 + 4); }
-    else { EXPECT_LE(r.stats.node_pairs, 21); }
+    else if (budget == "max_node_pairs") { EXPECT_LE(r.stats.node_pairs, 21); }
   }
 }
 
