@@ -22,6 +22,7 @@
 #include <limits>
 #include <queue>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/curve_eval.h"
@@ -360,24 +361,57 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
     double lb;
   };
   std::vector<FitBound> fit_bounds;
-  auto same = [](const BiarcFit& x, const BiarcFit& y) { return x.piece == y.piece && x.u0 == y.u0 && x.u1 == y.u1; };
   auto start = [](const BiarcFit& f) { return f.arc[0].start; };
   auto end = [](const BiarcFit& f) { return f.arc[f.arcs - 1].end(); };
+  // The first pair compared for each (side, end, other fit, neighbour's
+  // piece and end parameter): a lookup per leaf pair instead of a scan of all
+  // earlier ones (which made long queries quadratic in their leaf pairs).
+  struct NeighbourKey {
+    bool mine_is_a;
+    int dir, other_piece, piece;
+    double other_u0, other_u1, u;
+    bool operator==(const NeighbourKey& k) const {
+      return mine_is_a == k.mine_is_a && dir == k.dir && other_piece == k.other_piece && piece == k.piece &&
+             other_u0 == k.other_u0 && other_u1 == k.other_u1 && u == k.u;
+    }
+  };
+  struct NeighbourHash {
+    std::size_t operator()(const NeighbourKey& k) const {
+      std::size_t h = std::hash<double>()(k.u);
+      for (std::size_t v : {std::hash<double>()(k.other_u0), std::hash<double>()(k.other_u1),
+                            static_cast<std::size_t>(k.other_piece), static_cast<std::size_t>(k.piece),
+                            static_cast<std::size_t>(k.dir * 2 + k.mine_is_a)})
+        h = h * 0x9e3779b97f4a7c15ull + v;
+      return h;
+    }
+  };
+  std::unordered_map<NeighbourKey, std::size_t, NeighbourHash> neighbours;
+  auto remember = [&](std::int32_t ia, std::int32_t ib, double lb) {
+    const BiarcFit &fa = A.parts[ia].fit, &fb = B.parts[ib].fit;
+    // As A's neighbour `fa` of a later fit of A against fb: it precedes that
+    // fit (dir 0) when fa.u1 is its start, follows it (dir 1) when fa.u0 is its end.
+    for (int dir = 0; dir < 2; ++dir) {
+      neighbours.emplace(NeighbourKey{true, dir, fb.piece, fa.piece, fb.u0, fb.u1, dir == 0 ? fa.u1 : fa.u0},
+                         fit_bounds.size());
+      neighbours.emplace(NeighbourKey{false, dir, fa.piece, fb.piece, fa.u0, fa.u1, dir == 0 ? fb.u1 : fb.u0},
+                         fit_bounds.size());
+    }
+    fit_bounds.push_back({ia, ib, lb});
+  };
   // The bound of the pair (neighbour of `mine` at its start (dir 0) or end,
   // `other`), less the rounding gap between the shared end points; -inf if
   // that pair has not been compared. mine_is_a: which side `mine` is on.
   auto neighbour_bound = [&](const BiarcFit& mine, int dir, const BiarcFit& other, bool mine_is_a) {
-    for (const FitBound& f : fit_bounds) {
-      const BiarcFit &fa = A.parts[f.a].fit, &fb = B.parts[f.b].fit;
-      const BiarcFit& n = mine_is_a ? fa : fb;
-      if (!same(mine_is_a ? fb : fa, other) || n.piece != mine.piece) continue;
-      if (dir == 0 ? n.u1 != mine.u0 : n.u0 != mine.u1) continue;
-      const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
-      return f.lb - gap;
-    }
-    return -kInf;
+    const auto it = neighbours.find(
+        NeighbourKey{mine_is_a, dir, other.piece, mine.piece, other.u0, other.u1, dir == 0 ? mine.u0 : mine.u1});
+    if (it == neighbours.end()) return -kInf;
+    const FitBound& f = fit_bounds[it->second];
+    const BiarcFit& n = mine_is_a ? A.parts[f.a].fit : B.parts[f.b].fit;
+    const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
+    return f.lb - gap;
   };
   bool unresolved = false;
+  long local_failed = 0;  // local proofs that did not settle their pair
 
   // Pairs are queued with their cheap bound; the tight one is computed when
   // a pair reaches the top of the queue, so pairs that a later upper bound
@@ -507,8 +541,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           continue;
         }
         // The local proof next: most pairs that reach it are well above the
-        // cut, only not by the closed-form bounds.
-        {
+        // cut, only not by the closed-form bounds. A query where it mostly
+        // fails (a tolerance near the rounding of far-off coordinates, where
+        // no box clears) stops paying for it.
+        if (local_failed < 64 || 3 * st.local_pairs >= local_failed) {
           double local = 0.0;
           int evals = 0;
           Vec3 cp, cq;
@@ -522,6 +558,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
             fit_lb = std::min(fit_lb, std::max(quick.lower, local));
             continue;
           }
+          ++local_failed;
         }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
@@ -556,7 +593,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           offer(A.true_point(fa, xc), B.true_point(fb, xc));
       }
     }
-    fit_bounds.push_back({e.a, e.b, fit_lb});
+    remember(e.a, e.b, fit_lb);
     if (lb_pair >= cut()) {
       settled_lb = std::min(settled_lb, lb_pair);
       continue;
