@@ -130,7 +130,7 @@ StressCase two_solids(const std::vector<Profile>& keyframes_a, const std::vector
   StressCase c;
   c.solids.file = "<stress>";
   c.solids.solids = {{"a", keyframes_a}, {"b", keyframes_b}};
-  c.solids.instances = {{"a", 0, pa, time}, {"b", 1, pb, time}};
+  c.solids.instances = {{"a", 0, pa, time, {}}, {"b", 1, pb, time, {}}};
   c.solids.queries = {{0, 1}};
   return c;
 }

@@ -158,7 +158,7 @@ bool gauss_keep(const void* ctx, const Vec3& x, double r) {
   // through the opposite half-plane, where a point's (rho, z) is the mirror
   // (-rho, z) of its place on the line. So the ball may hold an end of such
   // a line at q or at its mirror.
-  for (const Vec2 qs : {q, Vec2(-q.x(), q.y())}) {
+  for (const Vec2& qs : {q, Vec2(-q.x(), q.y())}) {
     const Vec2 v = qs - g.T->c;
     const double len = v.norm();
     if (!(len > r * (1 + slack)) || g.cos_h <= 0) return true;

@@ -94,7 +94,7 @@ MUTANTS = [
      "for (int f = 0; f < 4; ++f) {", "for (int f = 0; f < 3; ++f) {",
      "spiral split ignores zeros of the curvature's derivative"),
     ("gauss_no_mirror", "fast/patch_distance.cpp",
-     "for (const Vec2 qs : {q, Vec2(-q.x(), q.y())}) {", "for (const Vec2 qs : {q}) {",
+     "for (const Vec2& qs : {q, Vec2(-q.x(), q.y())}) {", "for (const Vec2& qs : {q}) {",
      "Gauss-map window test forgets lines that run past the patch's axis (drops the closest binormal)"),
     ("local_balls_too_small", "fast/patch_distance.cpp",
      "const double r = prof + azi;  // every point", "const double r = 0.25 * (prof + azi);  // every point",
