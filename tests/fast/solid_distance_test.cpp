@@ -218,6 +218,23 @@ TEST(SolidDistanceRegression, BruteUpperIsRead) {
   EXPECT_GE(files, 3);
 }
 
+// One solid inside another whose containment the point tests cannot decide
+// (cases/regressions/containment_undecided_coin_in_bowl.json): the query
+// must keep the lower bound at 0 and say why, not report the surfaces' gap
+// (6.7e-7) as a lower bound of a distance that is 0.
+TEST(SolidDistanceContainment, UndecidedContainmentKeepsTheLowerBoundAtZero) {
+  Loaded L(source_path("cases/regressions/containment_undecided_coin_in_bowl.json"), 1e-2);
+  for (std::size_t q = 0; q < L.c.queries.size(); ++q) {
+    const auto [ia, ib] = L.c.queries[q];
+    const SolidDistanceResult r = solid_distance(L.m.instances[ia], L.m.instances[ib], DistanceOptions{1e-9});
+    // The path under test: neither an overlap proof nor a decided point.
+    ASSERT_FALSE(r.overlap) << L.key(q) << ": " << describe(r);
+    EXPECT_NE(r.reason.find("containment undecided"), std::string::npos) << L.key(q) << ": " << describe(r);
+    EXPECT_EQ(r.lower, 0.0) << L.key(q) << ": " << describe(r);
+    EXPECT_GT(r.upper, 0.0);
+  }
+}
+
 TEST(SolidDistanceClosedForm, AllFilesPresent) {
   // The brief's list; a renamed file must not silently drop its test.
   for (const char* f : {"curved_pieces", "two_spheres", "sphere_can", "coaxial_stacked", "stacked_coins", "parallel_cylinders",
