@@ -86,6 +86,11 @@ struct RandomPair {
   Arc2 aa, ab;
   Patch A, B;
 };
+// The random stream of one test (offset) for kind k, its seed printed.
+std::mt19937_64 kind_rng(const Kind& k, std::uint64_t offset) {
+  std::printf("%s: REVDIST_SEED=%llu\n", k.name, static_cast<unsigned long long>(seed()));
+  return std::mt19937_64(seed() + offset + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
+}
 RandomPair random_pair(std::mt19937_64& g, const Kind& k) {
   std::uniform_real_distribution<double> U(-1, 1);
   RandomPair p;
@@ -98,9 +103,7 @@ RandomPair random_pair(std::mt19937_64& g, const Kind& k) {
 
 TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
   const Kind k = GetParam();
-  std::mt19937_64 g(seed() + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
-  std::printf("%s: REVDIST_SEED=%llu\n", k.name, static_cast<unsigned long long>(seed()));
-  std::uniform_real_distribution<double> U(-1, 1);
+  std::mt19937_64 g = kind_rng(k, 0);
   int separated = 0, crossing = 0;
   double worst_gap = 0, worst_on = 0;
   for (int trial = 0; trial < 150; ++trial) {
@@ -359,9 +362,7 @@ TEST(PatchPairRegression, BinormalAcrossTheAxisIsNotDroppedByTheGaussWindow) {
 // crossing pairs, and, not vacuous, a proof for most cuts 10 % below the truth.
 TEST_P(PatchVsBrute, LocalProofNeverAboveTheTruth) {
   const Kind k = GetParam();
-  std::mt19937_64 g(seed() + 31 + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
-  std::printf("%s: REVDIST_SEED=%llu\n", k.name, static_cast<unsigned long long>(seed()));
-  std::uniform_real_distribution<double> U(-1, 1);
+  std::mt19937_64 g = kind_rng(k, 31);
   int separated = 0, proven_below = 0, crossing = 0;
   for (int trial = 0; trial < 150; ++trial) {
     const RandomPair p = random_pair(g, k);
