@@ -412,16 +412,20 @@ namespace {
 // The point of patch P's arc or segment at profile fraction u in [0, 1]
 // (local (r, z), r not clamped to the axis) and, when qu is given, its
 // derivative in u.
-Vec2 meridian_point(const Patch& P, double u, Vec2* qu = nullptr) {
+// ca, sa: the cosine and sine of the arc's angle u * sweep (unused for a
+// segment), for callers that carry them.
+Vec2 meridian_point(const Patch& P, double u, double ca, double sa, Vec2* qu) {
   if (P.straight) {
     if (qu) *qu = P.p1 - P.p0;
     return P.p0 + u * (P.p1 - P.p0);
   }
-  const double ang = u * P.sweep;
-  const double ca = std::cos(ang), sa = std::sin(ang);
   const Vec2 dir(ca * P.d0.x() - sa * P.d0.y(), sa * P.d0.x() + ca * P.d0.y());
   if (qu) *qu = P.rho * P.sweep * Vec2(-dir.y(), dir.x());
   return P.c + P.rho * dir;
+}
+Vec2 meridian_point(const Patch& P, double u, Vec2* qu = nullptr) {
+  const double ang = P.straight ? 0.0 : u * P.sweep;
+  return meridian_point(P, u, std::cos(ang), std::sin(ang), qu);
 }
 
 // Unit vectors e1, e2 normal to P's axis: azimuths about it are measured from e1.
@@ -430,6 +434,49 @@ void axis_frame(const Patch& P, Vec3* e1, Vec3* e2) {
   *e1 = P.a.cross(any).normalized();
   *e2 = P.a.cross(*e1);
 }
+
+// Patch P cut into boxes (profile fraction x azimuth) by patches_apart and
+// patches_at_least: its frame, and the sizes their bounds need: |x_u| (the
+// profile's length), the largest |x_th| (the largest radius) and |x_uu|.
+struct BoxedPatch {
+  const Patch& P;
+  Vec3 e1, e2;
+  double len, rmax, curv;
+  explicit BoxedPatch(const Patch& p)
+      : P(p),
+        len(p.straight ? (p.p1 - p.p0).norm() : p.rho * std::abs(p.sweep)),
+        rmax(std::max({p.p0.x(), p.p1.x(), p.straight ? 0.0 : p.c.x() + p.rho, 0.0})),
+        curv(p.straight ? 0.0 : len * len / p.rho) {
+    axis_frame(P, &e1, &e2);
+  }
+  // The box of half-widths (du, dt) around meridian point q (derivative qu)
+  // at the azimuth of cosine ct and sine st: its centre x, the radial and
+  // azimuthal directions there, x's first derivatives, and the radius
+  // prof + azi of a ball around x holding the whole box.
+  struct Box {
+    Vec3 x, er, et, xu, xt;
+    double prof, azi;
+    bool smooth;  // x(u, th) is smooth over the box (off the axis throughout)
+    double a;     // |x_u| du + |x_th| dt bounded: the length of a path of the box
+    double rest;  // half the bound on |x''| along such a path
+  };
+  Box box(Vec2 q, const Vec2& qu, double ct, double st, double du, double dt) const {
+    Box b;
+    const bool clamped = q.x() < 0;
+    q.x() = std::max(q.x(), 0.0);
+    b.er = ct * e1 + st * e2;
+    b.et = ct * e2 - st * e1;
+    b.x = P.o + q.x() * b.er + q.y() * P.a;
+    b.prof = du * len;
+    b.azi = dt * rmax;
+    b.smooth = !clamped && q.x() - b.prof >= 0;
+    b.xu = qu.x() * b.er + qu.y() * P.a;
+    b.xt = q.x() * b.et;
+    b.a = len * du + rmax * dt;
+    b.rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+    return b;
+  }
+};
 
 }  // namespace
 
@@ -500,11 +547,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   Vec2 dc;
   double dr;
   patch_disk(Q, &dc, &dr);
-  Vec3 e1, e2;
-  axis_frame(P, &e1, &e2);
-  const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
-  const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
-  const double curv = P.straight ? 0.0 : len * len / P.rho;  // |x_uu|
+  const BoxedPatch bp(P);
   struct Box { double u0, u1, t0, t1; };
   Box stack[64];
   int n = 0, evals = 0;
@@ -517,23 +560,19 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
     const double um = 0.5 * (b.u0 + b.u1), tm = 0.5 * (b.t0 + b.t1);
     const double du = 0.5 * (b.u1 - b.u0), dt = 0.5 * (b.t1 - b.t0);
     Vec2 qu;
-    Vec2 q = meridian_point(P, um, &qu);
-    const bool clamped = q.x() < 0;
-    q.x() = std::max(q.x(), 0.0);
-    const double ct = std::cos(tm), st = std::sin(tm);
-    const Vec3 er = ct * e1 + st * e2, et = ct * e2 - st * e1;
-    const Vec3 c = P.o + q.x() * er + q.y() * P.a;
-    const double prof = du * len, azi = dt * rmax;
+    const Vec2 q = meridian_point(P, um, &qu);
+    const BoxedPatch::Box bx = bp.box(q, qu, std::cos(tm), std::sin(tm), du, dt);
+    const double prof = bx.prof, azi = bx.azi;
     const double r = prof + azi + margin;
     Vec3 erq;
-    const Vec2 qc = patch_local(Q, c, &erq);
+    const Vec2 qc = patch_local(Q, bx.x, &erq);
     if ((qc - dc).norm() - dr > r) continue;                      // outside Q's bounding torus
     const double g = patch_surface_function(Q, qc);
     if (std::abs(g) > r) continue;                                // off Q's surface
     // The second-order test, where the box is smooth (r >= 0 throughout) and
     // g_Q is smooth over the ball.
     const double rho_min = qc.x() - (prof + azi);
-    if (!clamped && q.x() - prof >= 0 && rho_min > 0) {
+    if (bx.smooth && rho_min > 0) {
       double H = Q.straight ? std::abs(Q.n.x()) / rho_min : 0.0;
       Vec2 n2 = Q.n;
       bool smooth = true;
@@ -548,10 +587,8 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
       }
       if (smooth) {
         const Vec3 grad = n2.x() * erq + n2.y() * Q.a;
-        const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
-        const double first = std::abs(grad.dot(xu)) * du + std::abs(grad.dot(xt)) * dt;
-        const double a = len * du + rmax * dt;
-        const double second = 0.5 * (H * a * a + curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+        const double first = std::abs(grad.dot(bx.xu)) * du + std::abs(grad.dot(bx.xt)) * dt;
+        const double second = 0.5 * (H * bx.a * bx.a + bp.curv * du * du + 2 * bp.len * du * dt + bp.rmax * dt * dt);
         if (std::abs(g) > first + second + margin) continue;
       }
     }
@@ -582,22 +619,16 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // and a Hessian bounded as in patches_apart (1/D for the distance to a point
   // of Q's half-plane, plus 1/rho about Q's axis; |n_r|/rho for the line), which
   // gives the second-order bound of patches_apart.
-  Vec3 e1, e2;
-  axis_frame(P, &e1, &e2);
-  const double len = P.straight ? (P.p1 - P.p0).norm() : P.rho * std::abs(P.sweep);
-  const double rmax = std::max({P.p0.x(), P.p1.x(), P.straight ? 0.0 : P.c.x() + P.rho, 0.0});
-  const double curv = P.straight ? 0.0 : len * len / P.rho;  // |x_uu|
-  // Q's window: the arc's middle direction and half-width, or the segment.
-  double cos_h = 1, sin_h = 0, seg_len = 0;
-  Vec2 mid(1, 0), dir(1, 0);
+  const BoxedPatch bp(P);
+  // Q's window: the arc's (its Gauss window, single here), or the segment.
+  double seg_len = 0;
+  Vec2 dir(1, 0);
+  const GaussWindow win = Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q);
+  const Vec2& mid = win.mid;
+  const double cos_h = win.cos_h, sin_h = win.sin_h;
   if (Q.straight) {
     seg_len = (Q.p1 - Q.p0).norm();
     if (seg_len > 0) dir = (Q.p1 - Q.p0) / seg_len;
-  } else {
-    const double half = 0.5 * std::abs(Q.sweep), h = 0.5 * Q.sweep;
-    mid = Vec2(std::cos(h) * Q.d0.x() - std::sin(h) * Q.d0.y(), std::sin(h) * Q.d0.x() + std::cos(h) * Q.d0.y());
-    cos_h = std::cos(half);
-    sin_h = std::sin(half);
   }
   // Boxes carry the cosines and sines of their middle angles (azimuth, and
   // the arc's angle at the middle profile fraction), updated by angle
@@ -633,31 +664,14 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     const Box b = open[--n];
     if (++evals > budget) return done(false);
     const double du = b.du, dt = b.dt;
-    Vec2 q, qu;
-    if (P.straight) {
-      qu = P.p1 - P.p0;
-      q = P.p0 + b.um * qu;
-    } else {
-      const Vec2 d(b.cu * P.d0.x() - b.su * P.d0.y(), b.su * P.d0.x() + b.cu * P.d0.y());
-      q = P.c + P.rho * d;
-      qu = P.rho * P.sweep * Vec2(-d.y(), d.x());
-    }
-    const bool clamped = q.x() < 0;
-    q.x() = std::max(q.x(), 0.0);
-    const double ct = b.ct, st = b.st;
-    const Vec3 er = ct * e1 + st * e2, et = ct * e2 - st * e1;
-    const Vec3 x = P.o + q.x() * er + q.y() * P.a;
-    const double prof = du * len, azi = dt * rmax;
+    Vec2 qu;
+    const Vec2 q = meridian_point(P, b.um, b.cu, b.su, &qu);
+    const BoxedPatch::Box bx = bp.box(q, qu, b.ct, b.st, du, dt);
+    const double prof = bx.prof, azi = bx.azi;
     const double r = prof + azi;  // every point of the box is within r of x
     Vec3 erq;
-    const Vec2 qq = patch_local(Q, x, &erq);
+    const Vec2 qq = patch_local(Q, bx.x, &erq);
     const double rho_min = qq.x() - r;  // distance to Q's axis over the ball
-    // The second-order terms that do not depend on the piece: |grad f| = 1
-    // times x's second derivatives along the box, and x's first ones.
-    const bool smooth_box = !clamped && q.x() - prof >= 0;
-    const Vec3 xu = qu.x() * er + qu.y() * P.a, xt = q.x() * et;
-    const double a = len * du + rmax * dt;
-    const double rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
     double lb = std::numeric_limits<double>::infinity();
     double truth = lb;  // the distance from x itself to Q's patch
     // A piece of value f, unit gradient grad (in Q's (rho, z)) and a lower
@@ -674,9 +688,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     // but cost more than it saved on the bench's motion: +4 % instructions.)
     auto piece = [&](double f, const Vec2& grad, double lam) {
       double bound = f - r;
-      if (bound - margin < cut && smooth_box && !std::isnan(lam)) {
+      if (bound - margin < cut && bx.smooth && !std::isnan(lam)) {
         const Vec3 g = grad.x() * erq + grad.y() * Q.a;
-        bound = std::max(bound, f - std::abs(g.dot(xu)) * du - std::abs(g.dot(xt)) * dt + 0.5 * lam * a * a - rest);
+        bound = std::max(bound, f - std::abs(g.dot(bx.xu)) * du - std::abs(g.dot(bx.xt)) * dt +
+                                    0.5 * lam * bx.a * bx.a - bx.rest);
       }
       lb = std::min(lb, bound - margin);
     };
@@ -738,19 +753,19 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     }
     // A box this small that still does not clear sits at a minimum within
     // rounding of the cut: no box will clear it.
-    if (r <= 1e-9 * (rmax + len) || truth - cut <= 1e-12 * (rmax + len)) return done(false);
+    if (r <= 1e-9 * (bp.rmax + bp.len) || truth - cut <= 1e-12 * (bp.rmax + bp.len)) return done(false);
     if (n + 2 > kOpen || b.lu >= 63 || b.lt >= 63) return done(false);
     if (prof >= azi) {
       const HalfAngle h = half_angle(hu, &nu, b.lu, 0.5 * sweep);
       for (double sgn : {-1.0, 1.0}) {
         open[n++] = {b.um + sgn * 0.5 * du, 0.5 * du, b.cu * h.c - sgn * b.su * h.s, b.su * h.c + sgn * b.cu * h.s,
-                     b.tm, dt, ct, st, b.lu + 1, b.lt};
+                     b.tm, dt, b.ct, b.st, b.lu + 1, b.lt};
       }
     } else {
       const HalfAngle h = half_angle(ht, &nt, b.lt, M_PI / kSectors);
       for (double sgn : {-1.0, 1.0}) {
-        open[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, ct * h.c - sgn * st * h.s,
-                     st * h.c + sgn * ct * h.s, b.lu, b.lt + 1};
+        open[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, b.ct * h.c - sgn * b.st * h.s,
+                     b.st * h.c + sgn * b.ct * h.s, b.lu, b.lt + 1};
       }
     }
   }
