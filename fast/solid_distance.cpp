@@ -490,6 +490,12 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       if (lb >= kernel_cut) covered |= 4u << dir, covered_lb = std::min(covered_lb, lb);
     }
     double fit_lb = kInf;  // lower bound on the fits' distance, eps not taken off
+    // An arc pair retired by a lower bound `fits` on its patches' distance:
+    // the pair's bound (eps and rounding taken off) and the fits' bound.
+    auto settle = [&](double fits) {
+      lb_pair = std::min(lb_pair, fits - fa.eps - fb.eps - round);
+      fit_lb = std::min(fit_lb, fits);
+    };
     // The arcs of one fit join G1: only the fit's own ends are boundaries
     // (patch_pair_distance's `outer`), so the fit pair is one problem; ends
     // covered by a neighbour's pair are not boundaries to search either.
@@ -519,8 +525,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
             lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(P), patch_major_circle(Q)) - P.rho - Q.rho);
           if (lb - fa.eps - fb.eps - round >= cut()) {
             ++st.quick_pairs;
-            lb_pair = std::min(lb_pair, lb - fa.eps - fb.eps - round);
-            fit_lb = std::min(fit_lb, lb);
+            settle(lb);
             continue;
           }
         }
@@ -529,15 +534,13 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
           ++st.quick_pairs;
-          lb_pair = std::min(lb_pair, disk);
-          fit_lb = std::min(fit_lb, quick.lower);
+          settle(quick.lower);
           continue;
         }
         if (quick.exact) {
           ++st.quick_pairs;
           if (quick.lower - fa.eps - fb.eps < ub) offer(A.true_point(fa, quick.x), B.true_point(fb, quick.y));
-          lb_pair = std::min(lb_pair, disk);
-          fit_lb = std::min(fit_lb, quick.lower);
+          settle(quick.lower);
           continue;
         }
         // The local proof next: most pairs that reach it are well above the
@@ -554,8 +557,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           st.local_boxes += evals;
           if (proven) {
             ++st.local_pairs;
-            lb_pair = std::min(lb_pair, std::max(disk, local - fa.eps - fb.eps - round));
-            fit_lb = std::min(fit_lb, std::max(quick.lower, local));
+            settle(std::max(quick.lower, local));
             continue;
           }
           ++local_failed;
@@ -568,9 +570,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         // them (a Newton solve on the input curve) only when they may improve.
         if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));
         if (r.separated) {
-          const double d = std::min({r.found ? r.upper : kInf, r.lower_skipped, covered_lb});
-          lb_pair = std::min(lb_pair, std::max(disk, d - fa.eps - fb.eps - round));
-          fit_lb = std::min(fit_lb, std::max(quick.lower, d));
+          settle(std::max(quick.lower, std::min({r.found ? r.upper : kInf, r.lower_skipped, covered_lb})));
           continue;
         }
         all_separated = false;
