@@ -39,6 +39,12 @@ double local_distance(const Patch& p, const Vec2& q) {
 
 double point_patch_distance(const Patch& p, const Vec3& x) { return local_distance(p, patch_local(p, x)); }
 
+// The random stream of one test (offset from the seed), its seed printed under `name`.
+std::mt19937_64 named_rng(const char* name, std::uint64_t offset) {
+  std::printf("%s: REVDIST_SEED=%llu\n", name, static_cast<unsigned long long>(seed()));
+  return std::mt19937_64(seed() + offset);
+}
+
 // Points of patch p on a grid (n along the arc, m around the axis).
 template <class F>
 void for_grid(const Patch& p, const Arc2& arc, int n, int m, F f) {
@@ -81,23 +87,28 @@ struct Kind {
 
 class PatchVsBrute : public testing::TestWithParam<Kind> {};
 
+// The patch of `arc` at a random pose: a random rotation, a translation in
+// [-spread, spread]^3.
+Patch random_posed_patch(std::mt19937_64& g, const Arc2& arc, double spread) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  return make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)) * spread);
+}
+
 // Two random patches of the given kinds, B about 2.5 times farther out.
 struct RandomPair {
   Arc2 aa, ab;
   Patch A, B;
 };
-// The random stream of one test (offset) for kind k, its seed printed.
+// The random stream of kind k in one test (offset), its seed printed.
 std::mt19937_64 kind_rng(const Kind& k, std::uint64_t offset) {
-  std::printf("%s: REVDIST_SEED=%llu\n", k.name, static_cast<unsigned long long>(seed()));
-  return std::mt19937_64(seed() + offset + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
+  return named_rng(k.name, offset + (k.a_straight ? 1 : 0) + (k.b_straight ? 2 : 0));
 }
 RandomPair random_pair(std::mt19937_64& g, const Kind& k) {
-  std::uniform_real_distribution<double> U(-1, 1);
   RandomPair p;
   p.aa = random_arc(g, k.a_straight);
   p.ab = random_arc(g, k.b_straight);
-  p.A = make_patch(p.aa, random_rotation(g), Vec3(U(g), U(g), U(g)));
-  p.B = make_patch(p.ab, random_rotation(g), Vec3(U(g), U(g), U(g)) * 2.5);
+  p.A = random_posed_patch(g, p.aa, 1.0);
+  p.B = random_posed_patch(g, p.ab, 2.5);
   return p;
 }
 
@@ -159,6 +170,17 @@ Foot random_foot(std::mt19937_64& g, const Patch& B, const Arc2& arc, bool rando
   return {patch_world(B, q, er), sign * (n2.x() * er + n2.y() * B.a), B.straight ? 1.0 : std::min(B.rho, 1.0)};
 }
 
+// Patch B of `arc` at a random pose (rotation, translation in [-1, 1]^3) and
+// a random foot on it (see random_foot).
+struct FootedPatch {
+  Patch B;
+  Foot f;
+};
+FootedPatch random_footed_patch(std::mt19937_64& g, const Arc2& arc, bool random_sign) {
+  const Patch B = random_posed_patch(g, arc, 1.0);
+  return {B, random_foot(g, B, arc, random_sign)};
+}
+
 // A zone of the sphere of radius rs around centre, about a random axis, holding
 // the directions within `half` radians of direction w.
 Patch sphere_zone(std::mt19937_64& g, const Vec3& centre, double rs, const Vec3& w, double half) {
@@ -181,8 +203,7 @@ Patch sphere_zone(std::mt19937_64& g, const Vec3& centre, double rs, const Vec3&
 // far below the patches' curvature scale (second-order boxes: measured rates
 // are printed).
 TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
-  std::mt19937_64 g(seed() + 77);
-  std::printf("PatchesApart: REVDIST_SEED=%llu\n", static_cast<unsigned long long>(seed()));
+  std::mt19937_64 g = named_rng("PatchesApart", 77);
   std::uniform_real_distribution<double> U(-1, 1), U01(0, 1);
   const double gaps[] = {1e-2, 1e-3, 1e-4, 1e-6, -1e-6, -1e-4, -1e-3};
   int apart[7] = {}, trials = 0;
@@ -198,8 +219,9 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
       arc.curvature = -1.0 / r;
       arc.length = r * (p1 - p0);
     }
-    const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Foot f = random_foot(g, B, arc, true);
+    const FootedPatch fp = random_footed_patch(g, arc, true);
+    const Patch& B = fp.B;
+    const Foot& f = fp.f;
     const Vec3 &x0 = f.x, &n = f.n;
     const double scale = f.scale, rs = 0.1 * scale;
     ++trials;
@@ -222,8 +244,9 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
   // (first-order terms matter here, not only the curvature ones).
   for (int trial = 0; trial < 120; ++trial) {
     const Arc2 arc = random_arc(g, trial % 2 == 1);
-    const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Foot f = random_foot(g, B, arc, true);
+    const FootedPatch fp = random_footed_patch(g, arc, true);
+    const Patch& B = fp.B;
+    const Foot& f = fp.f;
     const Vec3 &x0 = f.x, &n = f.n;
     const Vec3 side = n.cross(Vec3(U(g), U(g), U(g))).normalized();
     const double rs = 0.1 * f.scale;
@@ -250,17 +273,16 @@ TEST(PatchesApart, NeverWhenCrossingAndUsuallyWhenApart) {
 // from it, so the distance is at most delta (0 when they cross): a proof at a
 // cut above that is a lie. Proofs at half the gap show the bound is useful.
 TEST(PatchesAtLeast, NeverAboveAGenuinePairNearContact) {
-  std::mt19937_64 g(seed() + 78);
-  std::printf("PatchesAtLeast: REVDIST_SEED=%llu\n", static_cast<unsigned long long>(seed()));
-  std::uniform_real_distribution<double> U(-1, 1);
+  std::mt19937_64 g = named_rng("PatchesAtLeast", 78);
   // Crossing gaps stop at -1e-3: deeper, the sphere's zone (0.3 rad about
   // -n) ends inside B's solid before it reaches B's surface.
   const double gaps[] = {1e-2, 1e-3, 1e-4, -1e-6, -1e-4, -1e-3};
   int proven[3] = {}, trials = 0;
   for (int trial = 0; trial < 120; ++trial) {
     const Arc2 arc = random_arc(g, trial % 3 == 1);
-    const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Foot f = random_foot(g, B, arc, true);
+    const FootedPatch fp = random_footed_patch(g, arc, true);
+    const Patch& B = fp.B;
+    const Foot& f = fp.f;
     const double rs = 0.1 * f.scale;
     ++trials;
     for (int k = 0; k < 6; ++k) {
@@ -295,14 +317,14 @@ TEST(PatchesAtLeast, NeverAboveAGenuinePairNearContact) {
 // turns its extreme probes into a point on both patches (a witness pair of
 // distance ~0 for the solid query).
 TEST(PatchCrossingPoint, OnBothPatchesWhenTheyCross) {
-  std::mt19937_64 g(seed() + 91);
-  std::printf("PatchCrossingPoint: REVDIST_SEED=%llu\n", static_cast<unsigned long long>(seed()));
+  std::mt19937_64 g = named_rng("PatchCrossingPoint", 91);
   std::uniform_real_distribution<double> U(-1, 1);
   int found = 0, trials = 0;
   for (int trial = 0; trial < 150; ++trial) {
     const Arc2 arc = random_arc(g, trial % 2 == 1);
-    const Patch B = make_patch(arc, random_rotation(g), Vec3(U(g), U(g), U(g)));
-    const Foot f = random_foot(g, B, arc, false);
+    const FootedPatch fp = random_footed_patch(g, arc, false);
+    const Patch& B = fp.B;
+    const Foot& f = fp.f;
     const Vec3 &x0 = f.x, &n = f.n;
     const Vec3 side = n.cross(Vec3(U(g), U(g), U(g))).normalized();
     const double rs = 0.1 * f.scale;
