@@ -112,19 +112,40 @@ RandomPair random_pair(std::mt19937_64& g, const Kind& k) {
   return p;
 }
 
+// A random pair of the kind and the enumeration's answer for it; coord, the
+// largest coordinate of the answer's points, scales rounding allowances.
+struct KernelTrial {
+  RandomPair p;
+  PatchPairResult r;
+  double coord;
+};
+KernelTrial kernel_trial(std::mt19937_64& g, const Kind& k) {
+  KernelTrial t{random_pair(g, k), {}, 0.0};
+  t.r = patch_pair_distance(t.p.A, t.p.B);
+  t.coord = std::max(t.r.x.cwiseAbs().maxCoeff(), t.r.y.cwiseAbs().maxCoeff());
+  return t;
+}
+
+// The least distance to B from a grid of A's points (60 x 120): at or above
+// the truth.
+double grid_distance(const RandomPair& p) {
+  double brute = INFINITY;
+  for_grid(p.A, p.aa, 60, 120, [&](const Vec3& x) { brute = std::min(brute, point_patch_distance(p.B, x)); });
+  return brute;
+}
+
 TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
   const Kind k = GetParam();
   std::mt19937_64 g = kind_rng(k, 0);
   int separated = 0, crossing = 0;
   double worst_gap = 0, worst_on = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    const RandomPair p = random_pair(g, k);
-    const Arc2& aa = p.aa;
-    const Patch &A = p.A, &B = p.B;
-    const PatchPairResult r = patch_pair_distance(A, B);
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch &A = t.p.A, &B = t.p.B;
+    const PatchPairResult& r = t.r;
     ASSERT_TRUE(r.found);
     // Coordinates here are O(4): rounding allowances are k ulps of the largest one.
-    const double coord = std::max(r.x.cwiseAbs().maxCoeff(), r.y.cwiseAbs().maxCoeff());
+    const double coord = t.coord;
     // A genuine pair: on the patches (measured worst 714 ulps of coord over seeds
     // 1-8 and the default: points found by iteration on near-tangent pairs; 4096 ~ 6x),
     // and the reported distance is theirs (computed the same way: equal).
@@ -132,8 +153,7 @@ TEST_P(PatchVsBrute, NeverBelowTruthAndExactWhenSeparated) {
     worst_on = std::max(worst_on, on / coord);
     EXPECT_LE(on, 4096 * kEps * coord) << "trial " << trial;
     EXPECT_EQ((r.x - r.y).norm(), r.upper) << "trial " << trial;
-    double brute = INFINITY;
-    for_grid(A, aa, 60, 120, [&](const Vec3& x) { brute = std::min(brute, point_patch_distance(B, x)); });
+    const double brute = grid_distance(t.p);
     if (r.separated) {
       ++separated;
       // Brute force over a grid is >= the truth; a separated answer is the truth.
@@ -387,23 +407,20 @@ TEST_P(PatchVsBrute, LocalProofNeverAboveTheTruth) {
   std::mt19937_64 g = kind_rng(k, 31);
   int separated = 0, proven_below = 0, crossing = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    const RandomPair p = random_pair(g, k);
-    const Arc2& aa = p.aa;
-    const Patch &A = p.A, &B = p.B;
-    const PatchPairResult r = patch_pair_distance(A, B);
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch &A = t.p.A, &B = t.p.B;
+    const PatchPairResult& r = t.r;
     ASSERT_TRUE(r.found);
     // Coordinates are O(4); the margin covers the evaluations' rounding (a
     // few ulps of them), the check's allowance the kernel's (64 ulps, above).
-    const double coord = std::max(r.x.cwiseAbs().maxCoeff(), r.y.cwiseAbs().maxCoeff());
+    const double coord = t.coord;
     const double margin = 256 * kEps * coord;
     double lower = 0;
     if (!r.separated) {
       if (r.upper == 0.0 || r.degenerate) continue;
       // Crossing (or undecided) pairs: nothing positive may be proven when
       // the grid finds them touching.
-      double brute = INFINITY;
-      for_grid(A, aa, 60, 120, [&](const Vec3& x) { brute = std::min(brute, point_patch_distance(B, x)); });
-      if (brute < 1e-9) {
+      if (grid_distance(t.p) < 1e-9) {
         ++crossing;
         EXPECT_FALSE(patches_at_least(A, B, 1e-6, margin, 4096, &lower)) << "trial " << trial;
         EXPECT_FALSE(patches_at_least(B, A, 1e-6, margin, 4096, &lower)) << "trial " << trial;
