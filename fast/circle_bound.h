@@ -2,6 +2,9 @@
 // cheap filter in front of circle3_circle3_distance (an iterative solve) in
 // the traversal's node bounds (paper section 4.2: bounds per node pair).
 #pragma once
+#include <algorithm>
+#include <cmath>
+
 #include "core/circle3.h"
 
 namespace revdist {
@@ -15,5 +18,33 @@ namespace revdist {
 // circles in one plane it is the gap of their disks' rims. Rounding is the
 // caller's (a few ulps of the coordinates).
 double circle3_circle3_lower_bound(const Circle3& a, const Circle3& b);
+
+// The same bound for circles whose normals are two fixed unit vectors na, nb
+// (the parts of two posed solids, all about their solids' axes): the sine of
+// the normals' angle is computed once, a pair costs three square roots.
+class CircleBoundAxes {
+ public:
+  CircleBoundAxes(const Vec3& na, const Vec3& nb);
+  // The bound between the circle of centre ca, radius ra about na and the
+  // circle of centre cb, radius rb about nb.
+  double operator()(const Vec3& ca, double ra, const Vec3& cb, double rb) const {
+    const Vec3 d = cb - ca;
+    const double dd = d.squaredNorm();
+    return std::max({std::sqrt(dd) - ra - rb, seen_from(na_.dot(d), dd, ra, rb), seen_from(nb_.dot(d), dd, rb, ra)});
+  }
+
+ private:
+  // Seen from the axis of the circle of radius r (height h0 of the other's
+  // centre over its plane, dd the squared centre distance): the height gap
+  // and the radial gap of the other circle, of radius ro.
+  double seen_from(double h0, double dd, double r, double ro) const {
+    const double rho0 = std::sqrt(std::max(0.0, dd - h0 * h0));
+    const double dz = std::max(0.0, std::abs(h0) - ro * s_);
+    const double dr = std::max({0.0, rho0 - ro - r, r - rho0 - ro});
+    return std::sqrt(dz * dz + dr * dr);
+  }
+  Vec3 na_, nb_;
+  double s_;
+};
 
 }  // namespace revdist

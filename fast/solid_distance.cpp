@@ -48,6 +48,7 @@ struct Part {
   BiarcFit fit;
   Vec2 disk_c = Vec2::Zero();
   double disk_r = 0.0;
+  Vec3 world_c = Vec3::Zero();  // the centre of the circle the disk centre sweeps (world)
   std::int32_t child = -1;  // first of the two child parts once split
   int level = 0;            // refinement levels below the tree leaf
 };
@@ -62,7 +63,7 @@ struct Solid {
 
   explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
-    parts.push_back(from_node(0, 0));
+    parts.push_back(placed(from_node(0, 0)));
   }
 
   Part from_node(std::int32_t node, int level) const {
@@ -80,8 +81,11 @@ struct Solid {
   }
 
   // The circle the part's disk centre sweeps, in the world.
-  Circle3 disk_circle(const Part& p) const {
-    return {s.t + p.disk_c.y() * axis, axis, std::max(p.disk_c.x(), 0.0)};
+  Circle3 disk_circle(const Part& p) const { return {p.world_c, axis, disk_circle_radius(p)}; }
+  static double disk_circle_radius(const Part& p) { return std::max(p.disk_c.x(), 0.0); }
+  Part placed(Part p) const {
+    p.world_c = s.t + p.disk_c.y() * axis;
+    return p;
   }
 
   bool can_split(const Part& p, int max_refine) const {
@@ -103,8 +107,8 @@ struct Solid {
       *refined += 2;
     }
     const auto k = static_cast<std::int32_t>(parts.size());
-    parts.push_back(c0);
-    parts.push_back(c1);
+    parts.push_back(placed(c0));
+    parts.push_back(placed(c1));
     parts[i].child = k;
     return k;
   }
@@ -260,8 +264,10 @@ struct Entry {
 // their bounding tori (disks rotated) are at least the closed-form circle
 // bound of their centre circles minus the disk radii apart. Used when a pair
 // is queued; the tight bound is computed only if the pair is popped.
-double cheap_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
-  return circle3_circle3_lower_bound(A.disk_circle(pa), B.disk_circle(pb)) - pa.disk_r - pb.disk_r;
+// `axes` holds the two solids' axes (every part's circle is about its solid's).
+double cheap_bound(const CircleBoundAxes& axes, const Part& pa, const Part& pb) {
+  return axes(pa.world_c, Solid::disk_circle_radius(pa), pb.world_c, Solid::disk_circle_radius(pb)) - pa.disk_r -
+         pb.disk_r;
 }
 
 // The tight lower bound between two parts with fits: their bounding tori by
@@ -353,7 +359,8 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   }
 
   std::priority_queue<Entry> heap;
-  heap.push({cheap_bound(A, A.parts[0], B, B.parts[0]) - round, 0, 0, false});
+  const CircleBoundAxes axes(A.axis, B.axis);
+  heap.push({cheap_bound(axes, A.parts[0], B.parts[0]) - round, 0, 0, false});
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
   // Lower bounds on the distance between the fits of the pairs compared so
   // far (before the eps are taken off), each fit named by its span (the same
@@ -422,7 +429,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // a later upper bound retires never pay for it. Every lower bound carries the same rounding
   // allowance (`round`).
   auto push_pair = [&](std::int32_t ia, std::int32_t ib) {
-    const double lb = cheap_bound(A, A.parts[ia], B, B.parts[ib]) - round;
+    const double lb = cheap_bound(axes, A.parts[ia], B.parts[ib]) - round;
     if (lb >= cut()) settled_lb = std::min(settled_lb, lb);
     else heap.push({lb, ia, ib, false});
   };
@@ -524,9 +531,11 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
           double ra, rb;
           patch_disk(P, &ca, &ra);
           patch_disk(Q, &cb, &rb);
-          double lb = circle3_circle3_lower_bound(patch_disk_circle(P, ca), patch_disk_circle(Q, cb)) - ra - rb;
+          // (The patches' circles are about their solids' axes: `axes` applies.)
+          auto bound = [&](const Circle3& a, const Circle3& b) { return axes(a.center, a.radius, b.center, b.radius); };
+          double lb = bound(patch_disk_circle(P, ca), patch_disk_circle(Q, cb)) - ra - rb;
           if (!P.straight && !Q.straight)
-            lb = std::max(lb, circle3_circle3_lower_bound(patch_major_circle(P), patch_major_circle(Q)) - P.rho - Q.rho);
+            lb = std::max(lb, bound(patch_major_circle(P), patch_major_circle(Q)) - P.rho - Q.rho);
           if (lb - fa.eps - fb.eps - round >= cut()) {
             ++st.quick_pairs;
             settle(lb);
