@@ -22,7 +22,6 @@
 #include <limits>
 #include <queue>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "core/curve_eval.h"
@@ -253,6 +252,69 @@ struct Solid {
   }
 };
 
+// The neighbour memo's key (solid_distance): a side, an end of a fit, the
+// other fit by its span, and the neighbour fit's piece and end parameter.
+struct NeighbourKey {
+  bool mine_is_a;
+  int dir, other_piece, piece;
+  double other_u0, other_u1, u;
+  bool operator==(const NeighbourKey& k) const {
+    return mine_is_a == k.mine_is_a && dir == k.dir && other_piece == k.other_piece && piece == k.piece &&
+           other_u0 == k.other_u0 && other_u1 == k.other_u1 && u == k.u;
+  }
+};
+struct NeighbourHash {
+  std::size_t operator()(const NeighbourKey& k) const {
+    std::size_t h = std::hash<double>()(k.u);
+    for (std::size_t v : {std::hash<double>()(k.other_u0), std::hash<double>()(k.other_u1),
+                          static_cast<std::size_t>(k.other_piece), static_cast<std::size_t>(k.piece),
+                          static_cast<std::size_t>(k.dir * 2 + k.mine_is_a)})
+      h = h * 0x9e3779b97f4a7c15ull + v;
+    return h;
+  }
+};
+// A flat hash table from neighbour keys to indices (the first insert of a key
+// wins), open addressing with linear probing: no allocation per insert.
+class NeighbourTable {
+ public:
+  NeighbourTable() : slots_(64) {}
+  void emplace(const NeighbourKey& k, std::size_t v) {
+    if (4 * (used_ + 1) > 3 * slots_.size()) grow();
+    Slot& s = slots_[index(k)];
+    if (s.used) return;
+    s = {k, v, true};
+    ++used_;
+  }
+  // The index stored for k, or nullptr.
+  const std::size_t* find(const NeighbourKey& k) const {
+    const Slot& s = slots_[index(k)];
+    return s.used ? &s.value : nullptr;
+  }
+
+ private:
+  struct Slot {
+    NeighbourKey key;
+    std::size_t value = 0;
+    bool used = false;
+  };
+  // The slot holding k, or the empty one where it belongs.
+  std::size_t index(const NeighbourKey& k) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = NeighbourHash()(k) & mask;
+    while (slots_[i].used && !(slots_[i].key == k)) i = (i + 1) & mask;
+    return i;
+  }
+  void grow() {
+    std::vector<Slot> old(slots_.size() * 2);
+    old.swap(slots_);
+    used_ = 0;
+    for (const Slot& s : old)
+      if (s.used) emplace(s.key, s.value);
+  }
+  std::vector<Slot> slots_;
+  std::size_t used_ = 0;
+};
+
 struct Entry {
   double lb;
   std::int32_t a, b;
@@ -377,26 +439,7 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // The first pair compared for each (side, end, other fit, neighbour's
   // piece and end parameter): a lookup per leaf pair instead of a scan of all
   // earlier ones (which made long queries quadratic in their leaf pairs).
-  struct NeighbourKey {
-    bool mine_is_a;
-    int dir, other_piece, piece;
-    double other_u0, other_u1, u;
-    bool operator==(const NeighbourKey& k) const {
-      return mine_is_a == k.mine_is_a && dir == k.dir && other_piece == k.other_piece && piece == k.piece &&
-             other_u0 == k.other_u0 && other_u1 == k.other_u1 && u == k.u;
-    }
-  };
-  struct NeighbourHash {
-    std::size_t operator()(const NeighbourKey& k) const {
-      std::size_t h = std::hash<double>()(k.u);
-      for (std::size_t v : {std::hash<double>()(k.other_u0), std::hash<double>()(k.other_u1),
-                            static_cast<std::size_t>(k.other_piece), static_cast<std::size_t>(k.piece),
-                            static_cast<std::size_t>(k.dir * 2 + k.mine_is_a)})
-        h = h * 0x9e3779b97f4a7c15ull + v;
-      return h;
-    }
-  };
-  std::unordered_map<NeighbourKey, std::size_t, NeighbourHash> neighbours;
+  NeighbourTable neighbours;
   auto remember = [&](std::int32_t ia, std::int32_t ib, double lb) {
     const BiarcFit &fa = A.parts[ia].fit, &fb = B.parts[ib].fit;
     // As A's neighbour `fa` of a later fit of A against fb: it precedes that
@@ -413,10 +456,10 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   // `other`), less the rounding gap between the shared end points; -inf if
   // that pair has not been compared. mine_is_a: which side `mine` is on.
   auto neighbour_bound = [&](const BiarcFit& mine, int dir, const BiarcFit& other, bool mine_is_a) {
-    const auto it = neighbours.find(
+    const std::size_t* it = neighbours.find(
         NeighbourKey{mine_is_a, dir, other.piece, mine.piece, other.u0, other.u1, dir == 0 ? mine.u0 : mine.u1});
-    if (it == neighbours.end()) return -kInf;
-    const FitBound& f = fit_bounds[it->second];
+    if (!it) return -kInf;
+    const FitBound& f = fit_bounds[*it];
     const BiarcFit& n = mine_is_a ? A.parts[f.a].fit : B.parts[f.b].fit;
     const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
     return f.lb - gap;
