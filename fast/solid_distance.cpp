@@ -19,6 +19,8 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <queue>
 #include <string>
@@ -264,13 +266,20 @@ struct NeighbourKey {
   }
 };
 struct NeighbourHash {
+  // The bit pattern of x (x + 0.0 makes -0.0 and 0.0, which compare equal,
+  // one pattern): cheaper than std::hash<double>, which is a byte-wise hash.
+  static std::uint64_t bits(double x) {
+    x += 0.0;
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  }
   std::size_t operator()(const NeighbourKey& k) const {
-    std::size_t h = std::hash<double>()(k.u);
-    for (std::size_t v : {std::hash<double>()(k.other_u0), std::hash<double>()(k.other_u1),
-                          static_cast<std::size_t>(k.other_piece), static_cast<std::size_t>(k.piece),
-                          static_cast<std::size_t>(k.dir * 2 + k.mine_is_a)})
-      h = h * 0x9e3779b97f4a7c15ull + v;
-    return h;
+    std::uint64_t h = bits(k.u);
+    for (std::uint64_t v : {bits(k.other_u0), bits(k.other_u1), static_cast<std::uint64_t>(k.other_piece),
+                            static_cast<std::uint64_t>(k.piece), static_cast<std::uint64_t>(k.dir * 2 + k.mine_is_a)})
+      h = (h ^ v) * 0x9e3779b97f4a7c15ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
   }
 };
 // A flat hash table from neighbour keys to indices (the first insert of a key
