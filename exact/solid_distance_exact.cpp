@@ -770,6 +770,14 @@ double thread_cpu_ms() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
+// The inverse of psi_of: the chart parameter s in [0, 2] of angle psi (radians, any turn).
+double s_of_psi(double psi) {
+  psi = std::remainder(psi, 2 * M_PI);  // [-pi, pi]
+  if (std::abs(psi) <= 0.5 * M_PI) return 0.5 * (std::tan(0.5 * psi) + 1.0);
+  const double q = psi > 0 ? psi - M_PI : psi + M_PI;  // the second chart, shifted by a half turn
+  return 1.0 + 0.5 * (std::tan(0.5 * q) + 1.0);
+}
+
 double round_down_sqrt(double x) { return x > 0 ? std::nextafter(std::sqrt(x), 0.0) : 0.0; }
 double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
 
@@ -958,6 +966,25 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.point_b = w[1 - s_side];
   if (budget_hit) res.reason = "box budget reached before the width target";
   if (!stuck.empty() && res.reason.empty()) res.reason = "boxes at rounding size remain";
+
+  // Surfaces that cross at a sharp edge of a profile (a joint of two
+  // elements, a table's rim) put every point near the closest pair on the
+  // crossing, where no point is strictly inside: the joints of each side's
+  // elements on the meridian of that side's witness point, and a little
+  // around it, are tested too.
+  if (lsq <= 0.0) {
+    for (int side = 0; side < 2; ++side) {
+      const Vec3 l = poses[side].rotation().transpose() * (w[side] - poses[side].translation);
+      const double s0 = s_of_psi(std::atan2(l.y(), l.x()));
+      for (std::size_t e = 0; e < elems[side].size(); ++e)
+        for (double u : {0.0, 1.0})
+          for (double ds : {0.0, 1e-6, -1e-6, 1e-4, -1e-4, 1e-2, -1e-2}) {
+            Vec3 p;
+            if (solver.test_point(side, static_cast<int>(e), u, std::clamp(s0 + ds, 0.0, 2.0), &p) == Inside::inside)
+              return report_overlap(p);
+          }
+    }
+  }
 
   if (res.lower > 0.0) {
     // The surfaces are disjoint: a boundary point of each outside the other solid
