@@ -185,6 +185,33 @@ struct Solid {
     return s.R * local + s.t;
   }
 
+  // Genuine surface points on world point x's meridian, from the input curve
+  // at fit f's span ends and at 1, 2, 4 ... (`steps` of them) span lengths
+  // beyond each end (within the piece), handed to take(point) in that order
+  // until it returns true. Where two solids cross at a sharp edge, the
+  // nearest-point probes sit on the crossing and prove nothing; a step along
+  // the profile reaches the part of the surface that is inside the other.
+  template <class Take>
+  bool along_meridian(const BiarcFit& f, const Vec3& x, int steps, Take take) const {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    const double rho = std::hypot(d.x(), d.y());
+    const Vec3 er = rho > 0 ? Vec3(d.x() / rho, d.y() / rho, 0) : Vec3::UnitX();
+    const Piece& piece = s.profile->pieces[f.piece];
+    const auto [lo, hi] = piece_domain(piece);
+    const double span = f.u1 - f.u0;
+    auto at = [&](double u) {
+      const Vec2 c = piece_point(piece, std::clamp(u, lo, hi));
+      return take(Vec3(s.R * Vec3(std::max(c.x(), 0.0) * er.x(), std::max(c.x(), 0.0) * er.y(), c.y()) + s.t));
+    };
+    if (at(f.u0) || at(f.u1)) return true;
+    double step = span;
+    for (int k = 0; k < steps; ++k, step *= 2) {
+      if (f.u0 > lo && at(f.u0 - step)) return true;
+      if (f.u1 < hi && at(f.u1 + step)) return true;
+    }
+    return false;
+  }
+
   // A genuine surface point near world point x: a greedy descent of the disks
   // towards x's meridian point, then the nearest point of that fit's span.
   Vec3 nearest_surface_point(const Vec3& x) {
@@ -649,6 +676,16 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
         for (const Vec3& y : {r.b_low, r.b_high}) {
           const Vec3 t = B.true_point(fb, y);
           if (A.side_of(t, round) == Side::inside) return proven_overlap(t);
+        }
+        // The candidate pair's points and, along their meridians, the input
+        // curve beyond the fits' spans (a crossing at a sharp edge).
+        if (r.found) {
+          Vec3 in;
+          auto in_b = [&](const Vec3& t) { return B.side_of(t, round) == Side::inside ? (in = t, true) : false; };
+          auto in_a = [&](const Vec3& t) { return A.side_of(t, round) == Side::inside ? (in = t, true) : false; };
+          if (in_b(A.true_point(fa, r.x)) || in_a(B.true_point(fb, r.y)) || A.along_meridian(fa, r.x, 3, in_b) ||
+              B.along_meridian(fb, r.y, 3, in_a))
+            return proven_overlap(in);
         }
         // No shared point proven: a point where the fits cross still gives a
         // witness pair within the fits' errors, so touching solids need not

@@ -170,6 +170,9 @@ void run_regression(const std::string& path) {
       EXPECT_LE(r.lower, e->second + round) << describe(r);
       EXPECT_GE(r.upper, e->second - round) << describe(r);
     }
+    // Solids proven to share interior points (an independent check in the file's comment).
+    const auto o = ex.overlap.find(L.key(q));
+    if (o != ex.overlap.end() && o->second) { EXPECT_TRUE(r.overlap) << "the solids share interior points: " << describe(r); }
     // The pair that exposed the bug: a genuine pair at brute_upper, so the
     // truth is at most that and a converged bracket ends within tol of it.
     const auto bu = ex.brute_upper.find(L.key(q));
