@@ -5,7 +5,9 @@
 // compare the brackets (they must intersect) between builds.
 // Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
 //                             [--save FILE] [--check FILE] [--repeat K]
-//                             [--select LO,HI]
+//                             [--select LO,HI] [--coherent]
+// --coherent starts each query from the previous frame's answer of the same
+// pair (WarmStart, frame coherence).
 // --select re-runs the queries whose time ranks between quantiles LO and HI
 // with callgrind's collection toggled on around each (run under
 // `valgrind --tool=callgrind --collect-atstart=no`): the profile of, say, the
@@ -52,6 +54,7 @@ struct Bracket {
 int main(int argc, char** argv) {
   double eps = 1e-5, tol = -1;
   int frames = 40, repeat = 1;
+  bool coherent = false;
   double sel_lo = -1, sel_hi = -1;
   std::string poses_file = "/tmp/revdist_motion_poses.bin", save, check;
   for (int i = 1; i < argc; ++i) {
@@ -64,6 +67,7 @@ int main(int argc, char** argv) {
     else if (a == "--save") save = v, ++i;
     else if (a == "--check") check = v, ++i;
     else if (a == "--repeat") repeat = atoi(v), ++i;
+    else if (a == "--coherent") coherent = true;
     else if (a == "--select") {
       if (sscanf(v, "%lf,%lf", &sel_lo, &sel_hi) != 2) return 2;
       ++i;
@@ -118,14 +122,18 @@ int main(int argc, char** argv) {
   std::vector<Bracket> got;
   DistanceStats sum;
   int overlaps = 0, unconverged = 0;
+  std::vector<WarmStart> warms(poses.size());  // each frame's warm start (--coherent)
   for (int rep = 0; rep < repeat; ++rep)
-    for (const FramePose& p : poses) {
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const FramePose& p = poses[k];
       PosedSolid A{&profiles[p.a], &trees[p.a]}, B{&profiles[p.b], &trees[p.b]};
       A.R = Eigen::Map<const Mat3>(p.Ra), A.t = Eigen::Map<const Vec3>(p.ta);
       B.R = Eigen::Map<const Mat3>(p.Rb), B.t = Eigen::Map<const Vec3>(p.tb);
       const double c0 = thread_cpu_us();
-      const SolidDistanceResult r = solid_distance(A, B, o);
+      const SolidDistanceResult r = solid_distance(A, B, o, warms[k]);
       const double dt = thread_cpu_us() - c0;
+      if (coherent && k + 1 < poses.size() && poses[k + 1].a == p.a && poses[k + 1].b == p.b)
+        warms[k + 1] = warm_start_of(r, A, B);
       if (rep > 0) continue;
       us.push_back(dt);
       if (p.target < 0) over_us.push_back(dt);
@@ -155,7 +163,7 @@ int main(int argc, char** argv) {
       A.R = Eigen::Map<const Mat3>(p.Ra), A.t = Eigen::Map<const Vec3>(p.ta);
       B.R = Eigen::Map<const Mat3>(p.Rb), B.t = Eigen::Map<const Vec3>(p.tb);
       CALLGRIND_TOGGLE_COLLECT;
-      const SolidDistanceResult r = solid_distance(A, B, o);
+      const SolidDistanceResult r = solid_distance(A, B, o, warms[order[k]]);
       CALLGRIND_TOGGLE_COLLECT;
       sel.node_pairs += r.stats.node_pairs, sel.bounds += r.stats.bounds, sel.leaf_pairs += r.stats.leaf_pairs;
       sel.patch_pairs += r.stats.patch_pairs, sel.quick_pairs += r.stats.quick_pairs;

@@ -380,9 +380,8 @@ double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb
   return circle3_circle3_distance(A.disk_circle(pa), B.disk_circle(pb)).distance - pa.disk_r - pb.disk_r;
 }
 
-}  // namespace
-
-SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, const DistanceOptions& opt) {
+// The query (Algorithm 2), from a warm start when one is given.
+SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const DistanceOptions& opt, const WarmStart* warm) {
   SolidDistanceResult res;
   if (!pa.tree || !pb.tree || pa.tree->nodes.empty() || pb.tree->nodes.empty()) {
     res.reason = "empty profile";
@@ -424,6 +423,24 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
       res.point_b = y;
     }
   };
+
+  // The previous pose's answer (frame coherence), its points checked against
+  // the solids: within `round` of its solid (not outside), the pair bounds
+  // the distance from above by their distance plus those margins; after an
+  // overlap, the shared point of one solid still inside the other proves it.
+  if (warm && warm->valid) {
+    const Vec3 x = pa.R * warm->a_local + pa.t, y = pb.R * warm->b_local + pb.t;
+    const bool x_in = A.side_of(x, round) != Side::outside, y_in = B.side_of(y, round) != Side::outside;
+    if (warm->overlap) {
+      if (x_in && B.side_of(x, round) == Side::inside) return proven_overlap(x);
+      if (y_in && A.side_of(y, round) == Side::inside) return proven_overlap(y);
+    }
+    if (x_in && y_in) {
+      ub = (x - y).norm() + up_round + 2 * round;
+      res.point_a = x;
+      res.point_b = y;
+    }
+  }
 
   // Containment: a surface point of one solid strictly inside the other.
   bool containment_unknown = false;
@@ -745,6 +762,26 @@ SolidDistanceResult solid_distance(const PosedSolid& pa, const PosedSolid& pb, c
   if (!res.converged && res.reason.empty())
     res.reason = res.decided ? "threshold decided before the bracket met tol" : "bracket wider than tol";
   return res;
+}
+
+}  // namespace
+
+SolidDistanceResult solid_distance(const PosedSolid& a, const PosedSolid& b, const DistanceOptions& options) {
+  return query(a, b, options, nullptr);
+}
+
+SolidDistanceResult solid_distance(const PosedSolid& a, const PosedSolid& b, const DistanceOptions& options,
+                                   const WarmStart& warm) {
+  return query(a, b, options, &warm);
+}
+
+WarmStart warm_start_of(const SolidDistanceResult& r, const PosedSolid& a, const PosedSolid& b) {
+  WarmStart w;
+  w.valid = std::isfinite(r.upper) && r.point_a.allFinite() && r.point_b.allFinite();
+  w.overlap = r.overlap;
+  w.a_local = a.R.transpose() * (r.point_a - a.t);
+  w.b_local = b.R.transpose() * (r.point_b - b.t);
+  return w;
 }
 
 }  // namespace revdist

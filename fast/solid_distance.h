@@ -68,4 +68,23 @@ struct SolidDistanceResult {
 
 SolidDistanceResult solid_distance(const PosedSolid& a, const PosedSolid& b, const DistanceOptions& options = {});
 
+// Frame coherence for a sequence of poses of the same two solids (smooth
+// motion): what one query keeps for the next, its answer's points in each
+// solid's own frame. The next query checks them against the solids at their
+// new poses (a point not in its solid, to rounding, is ignored, so a stale or
+// foreign warm start costs two point tests and never changes an answer's
+// guarantees): the two points give an upper bound before the traversal, and
+// after an overlap the shared point, still inside the other solid, proves the
+// overlap at once.
+struct WarmStart {
+  bool valid = false;
+  bool overlap = false;
+  Vec3 a_local = Vec3::Zero(), b_local = Vec3::Zero();
+};
+// The warm start a result leaves for the next pose (a and b: the poses it was
+// computed at). Invalid when the result has no points (an empty profile).
+WarmStart warm_start_of(const SolidDistanceResult& r, const PosedSolid& a, const PosedSolid& b);
+SolidDistanceResult solid_distance(const PosedSolid& a, const PosedSolid& b, const DistanceOptions& options,
+                                   const WarmStart& warm);
+
 }  // namespace revdist
