@@ -112,18 +112,28 @@ void set_counters(BenchRecord& r, const QueryTimes& q) {
   r.overlap_p99_us = nearest_rank_percentile(q.overlap_us, 0.99);
 }
 
-// Times solid_distance on every frame, one call per frame, same poses as FCL.
+void set_coherent(BenchRecord& r, const QueryTimes& q) {
+  r.coherent_median_us = nearest_rank_percentile(q.us, 0.5);
+  r.coherent_p90_us = nearest_rank_percentile(q.us, 0.9);
+  r.coherent_overlap_p99_us = nearest_rank_percentile(q.overlap_us, 0.99);
+}
+
+// Times solid_distance on every frame, one call per frame, same poses as FCL;
+// coherent: each call warm-started from the previous frame's answer.
 QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::function<PosedSolid(int)>& a,
-                        const std::function<PosedSolid(int)>& b, double tol, const std::vector<int>& sample) {
+                        const std::function<PosedSolid(int)>& b, double tol, const std::vector<int>& sample,
+                        bool coherent = false) {
   QueryTimes q;
   DistanceOptions o;
   o.tol = tol;
   std::size_t next = 0;
+  WarmStart warm;
   for (int j = 0; j < static_cast<int>(frames.size()); ++j) {
     PosedSolid A = a(j), B = b(j);
     A.R = frames[j].R_WA, A.t = frames[j].t_WA, B.R = frames[j].R_WB, B.t = frames[j].t_WB;
     const double c0 = thread_cpu_us();
-    const SolidDistanceResult r = solid_distance(A, B, o);
+    const SolidDistanceResult r = solid_distance(A, B, o, warm);
+    if (coherent) warm = warm_start_of(r, A, B);
     q.us.push_back(thread_cpu_us() - c0);
     if (frames[j].target < 0) q.overlap_us.push_back(q.us.back());
     q.node_pairs += r.stats.node_pairs, q.leaf_pairs += r.stats.leaf_pairs, q.patch_pairs += r.stats.patch_pairs;
@@ -152,7 +162,8 @@ struct Certified {
 double error_vs(const Certified& c, double d) { return d < c.lower ? c.lower - d : d > c.upper ? d - c.upper : 0.0; }
 
 void fold_accuracy(BenchRecord& r, const std::vector<Certified>& exact, const std::vector<SolidDistanceResult>& fast,
-                   const std::vector<SolidDistanceResult>& proven, const std::vector<double>& fcl) {
+                   const std::vector<SolidDistanceResult>& proven, const std::vector<double>& fcl,
+                   const std::vector<SolidDistanceResult>& coherent = {}) {
   for (std::size_t i = 0; i < exact.size(); ++i) {
     if (!exact[i].ok) {
       ++r.exact_uncertified;
@@ -168,6 +179,10 @@ void fold_accuracy(BenchRecord& r, const std::vector<Certified>& exact, const st
     if (i < proven.size()) {
       r.proven_max_err = std::max(r.proven_max_err, error_vs(exact[i], proven[i].distance));
       r.violations += proven[i].lower > exact[i].upper + slack || proven[i].upper < exact[i].lower - slack;
+    }
+    if (i < coherent.size()) {
+      r.max_err = std::max(r.max_err, error_vs(exact[i], coherent[i].distance));
+      r.violations += coherent[i].lower > exact[i].upper + slack || coherent[i].upper < exact[i].lower - slack;
     }
     if (i < fcl.size()) r.fcl_max_err = std::max(r.fcl_max_err, error_vs(exact[i], fcl[i]));
   }
@@ -361,7 +376,7 @@ class Runner {
       }
     }
     // Figure 12: every pair in near-contact motion, revdist (tol 2 eps and the proven mode) and FCL.
-    QueryTimes all, all_proven;
+    QueryTimes all, all_proven, all_coherent;
     std::vector<double> all_fcl;
     BenchRecord total;
     for (PairMotion& pm : motions_) {
@@ -372,10 +387,12 @@ class Runner {
       auto fb = [tb](int) { return tb->posed(); };
       const QueryTimes q = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample);
       const QueryTimes qp = time_queries(pm.frames, fa, fb, o_.proven_tol, pm.sample);
+      const QueryTimes qc = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample, true);
       BenchRecord r;
       r.experiment = "motion", r.pair = pm.name, r.eps = eps, r.tol = 2 * eps;
       set_counters(r, q);
       r.proven_median_us = nearest_rank_percentile(qp.us, 0.5), r.proven_p90_us = nearest_rank_percentile(qp.us, 0.9);
+      set_coherent(r, qc);
       r.nodes = ta->stats.nodes + tb->stats.nodes, r.leaves = ta->stats.leaves + tb->stats.leaves;
       r.bytes = static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
@@ -400,9 +417,9 @@ class Runner {
         r.fcl_triangles = ma.triangles + mb.triangles, r.fcl_bv_nodes = ma.bv_nodes + mb.bv_nodes;
         r.fcl_bytes = ma.bytes + mb.bytes;
       }
-      fold_accuracy(r, pm.exact, q.sample, qp.sample, fcl_sample);
+      fold_accuracy(r, pm.exact, q.sample, qp.sample, fcl_sample, qc.sample);
       records.push_back(r);
-      merge(all, q), merge(all_proven, qp);
+      merge(all, q), merge(all_proven, qp), merge(all_coherent, qc);
       total.nodes += r.nodes, total.leaves += r.leaves, total.bytes += r.bytes, total.fcl_zero += r.fcl_zero;
       total.exact_frames += r.exact_frames, total.exact_uncertified += r.exact_uncertified;
       total.violations += r.violations, total.max_err = std::max(total.max_err, r.max_err);
@@ -417,6 +434,7 @@ class Runner {
     set_counters(t, all);
     t.proven_median_us = nearest_rank_percentile(all_proven.us, 0.5);
     t.proven_p90_us = nearest_rank_percentile(all_proven.us, 0.9);
+    set_coherent(t, all_coherent);
     t.fcl_median_us = nearest_rank_percentile(all_fcl, 0.5);
     t.fcl_p90_us = nearest_rank_percentile(all_fcl, 0.9);
     t.fcl_mean_us = mean(all_fcl);

@@ -57,6 +57,9 @@ struct BenchRecord {
   double fcl_median_us = 0.0, fcl_p90_us = 0.0, fcl_mean_us = 0.0;
   double ratio = 0.0;      // FCL median / revdist median, same run
   double proven_median_us = 0.0, proven_p90_us = 0.0;  // tol = proven_tol ("motion")
+  // The same frames at tol = 2 eps in sequence, each query warm-started from
+  // the previous frame's answer (WarmStart, frame coherence; "motion").
+  double coherent_median_us = NAN, coherent_p90_us = NAN, coherent_overlap_p99_us = NAN;
   long nodes = 0, leaves = 0;   // revdist tree nodes (sum over the pair)
   long bytes = 0;
   long fcl_triangles = 0, fcl_bv_nodes = 0, fcl_bytes = 0;
