@@ -682,8 +682,11 @@ TEST(SolidDistanceWarmStart, ForeignPointsAreIgnored) {
     WarmStart w;
     w.valid = true;
     w.overlap = overlap;
-    w.a_local = Vec3(5, 0, 0.7);    // beside the table, off its surface
-    w.b_local = Vec3(0.1, 0, 3.0);  // above it
+    // One world point far above A, off both solids: taken at its word it
+    // would bound the distance by 0.
+    const Vec3 p = A.t + 10 * A.R.col(2);
+    w.a_local = A.R.transpose() * (p - A.t);
+    w.b_local = B.R.transpose() * (p - B.t);
     const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{kTol}, w);
     EXPECT_EQ(r.lower, cold.lower) << describe(r);
     EXPECT_EQ(r.upper, cold.upper) << describe(r);
