@@ -72,6 +72,9 @@ struct BenchRecord {
   double overlap_median_us = 0.0, overlap_p99_us = 0.0;
   int unconverged = 0;     // revdist queries that did not reach tol
   int fcl_zero = 0;        // frames FCL reported 0 (intersecting triangles)
+  // revdist's p99 on the frames FCL reported 0: overlapping poses chosen by
+  // the other engine (planned overlaps include frames the motion left apart).
+  double fcl_zero_p99_us = NAN;
   // Accuracy on the certified sample: |answer - certified distance| (max), and
   // brackets that miss the certified interval (must be 0).
   int exact_frames = 0, exact_uncertified = 0;
