@@ -405,6 +405,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     return res;
   };
 
+  // Overlap probes: a genuine point of one solid's surface strictly inside
+  // the other (kept in `shared`) proves that they overlap.
+  Vec3 shared = Vec3::Zero();
+  auto in_b = [&](const Vec3& t) { return B.side_of(t, round) == Side::inside ? (shared = t, true) : false; };
+  auto in_a = [&](const Vec3& t) { return A.side_of(t, round) == Side::inside ? (shared = t, true) : false; };
+
   double ub = kInf;
   // The queue stops below cut(): the bracket then meets tol or rel_tol.
   const double rel = std::max(opt.rel_tol, 0.0);
@@ -493,6 +499,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // piece and end parameter): a lookup per leaf pair instead of a scan of all
   // earlier ones (which made long queries quadratic in their leaf pairs).
   NeighbourTable neighbours;
+  bool tried_witness = false;  // the witness's overlap probe (once a query)
   auto remember = [&](std::int32_t ia, std::int32_t ib, double lb) {
     const BiarcFit &fa = A.parts[ia].fit, &fb = B.parts[ib].fit;
     // As A's neighbour `fa` of a later fit of A against fb: it precedes that
@@ -671,6 +678,17 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           }
           ++local_failed;
         }
+        // Fits that may cross (their bound less the fit errors reaches 0),
+        // once a query, before the enumeration: the best witness pair so far
+        // and the input curve along its meridians may already prove an
+        // overlap (alternating projection stops near the crossing, where no
+        // point is inside; a step along the profile goes in).
+        if (!tried_witness && disk <= 0 && ub < kInf) {
+          tried_witness = true;
+          const Vec3 wa = res.point_a, wb = res.point_b;
+          if (in_b(wa) || in_a(wb) || A.along_meridian(fa, wa, 3, in_b) || B.along_meridian(fb, wb, 3, in_a))
+            return proven_overlap(shared);
+        }
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
@@ -696,14 +714,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         }
         // The candidate pair's points and, along their meridians, the input
         // curve beyond the fits' spans (a crossing at a sharp edge).
-        if (r.found) {
-          Vec3 in;
-          auto in_b = [&](const Vec3& t) { return B.side_of(t, round) == Side::inside ? (in = t, true) : false; };
-          auto in_a = [&](const Vec3& t) { return A.side_of(t, round) == Side::inside ? (in = t, true) : false; };
-          if (in_b(A.true_point(fa, r.x)) || in_a(B.true_point(fb, r.y)) || A.along_meridian(fa, r.x, 3, in_b) ||
-              B.along_meridian(fb, r.y, 3, in_a))
-            return proven_overlap(in);
-        }
+        if (r.found && (in_b(A.true_point(fa, r.x)) || in_a(B.true_point(fb, r.y)) ||
+                        A.along_meridian(fa, r.x, 3, in_b) || B.along_meridian(fb, r.y, 3, in_a)))
+          return proven_overlap(shared);
         // No shared point proven: a point where the fits cross still gives a
         // witness pair within the fits' errors, so touching solids need not
         // wait for the refinement to find one.

@@ -630,6 +630,18 @@ TEST(SolidDistanceThreshold, InterlockedRingsSettleFromTheEarlyWitness) {
   }
 }
 
+// Two bottles slightly overlapping (cases/regressions/
+// solid_overlap_bottles_witness.json): the witness pair found before the
+// traversal proves the overlap at the first fit pair that may cross, without
+// enumerating any patch pair (it took 12 enumerations when only the
+// enumeration's points were tried).
+TEST(SolidDistanceOverlap, WitnessProvesItBeforeAnyEnumeration) {
+  Loaded L(source_path("cases/regressions/solid_overlap_bottles_witness.json"), kEps);
+  const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
+  EXPECT_TRUE(r.overlap) << describe(r);
+  EXPECT_EQ(r.stats.patch_pairs, 0) << describe(r);
+}
+
 // Frame coherence (WarmStart): the two tables of the sharp-edge regression,
 // A's rim 4e-5 deep in B's table top, B moved out along its axis 1e-5 a frame.
 // Each query starts from the previous frame's answer: brackets hold and meet
