@@ -38,14 +38,15 @@ double monotone_root(const double* a, const double* da, int n, double lo, double
 // as intervals whose coefficients come within tol_abs of zero without a sign
 // change: they are halved down to a width of kTiny of [lo, hi] and reported
 // where |p| <= tol_abs, as the derivative-recursion method reports them at
-// critical points. Returns -1 when the work budget runs out (the caller falls
-// back to the derivative recursion).
+// critical points. Returns -1 when the work budget runs out or a flat stretch
+// (see kFlatBoxes) is found (the caller falls back to the derivative recursion).
 static int bernstein_roots(const double* a, int n, double lo, double hi, double tol_abs, double* roots) {
   // Boxes narrower than this (relative to [lo, hi]) are not halved further: a
   // multiple root or a cluster is reported at the box's middle, to be polished
   // by the caller on its unsquared equation; roots closer than two such boxes
   // are one.
   constexpr double kTiny = 1e-8;
+  constexpr int kFlatBoxes = 32;
   const double w = hi - lo;
   // q(s) = p(lo + w s): Taylor shift by lo, then scale by w^i.
   double c[9];
@@ -91,7 +92,7 @@ static int bernstein_roots(const double* a, int n, double lo, double hi, double 
   }
   first.s0 = 0;
   first.s1 = 1;
-  int nr = 0, work = 0;
+  int nr = 0, work = 0, flat = 0;
   auto q = [&](double x) { return poly_eval(c, n, x); };
   while (top > 0) {
     if (++work > 400 || nr > 16) return -1;
@@ -111,6 +112,13 @@ static int bernstein_roots(const double* a, int n, double lo, double hi, double 
     const bool tiny = width < kTiny;
     if (v == 0) {
       if (mn > tol_b) continue;  // no root, and p stays away from 0 here
+      // A flat stretch: p within the coefficients' rounding (tol_b, ~1e-9
+      // after the shift to [-1.25, 1.25]) of 0 over many boxes, around a
+      // near-double root or a close pair that only the evaluation in the
+      // original variable resolves. Halving it down to kTiny used up the
+      // 400-box budget before the fallback (on 565 of the motion probe's 600
+      // queries): fall back after kFlatBoxes such boxes instead.
+      if (++flat > kFlatBoxes) return -1;
       if (tiny) {
         const double m = lo + w * 0.5 * (box.s0 + box.s1);
         if (std::abs(poly_eval(a, n, m)) <= tol_abs) roots[nr++] = m;
