@@ -415,6 +415,13 @@ Inside point_in_solid_di(const std::vector<ElemT<Di>>& elems, const Di& rho, con
   return total % 2 == 1 ? Inside::inside : Inside::outside;
 }
 
+// Inverse of psi_of (the chart of solid_exact_internal.h), psi in [-pi, pi].
+double s_of(double psi) {
+  if (std::abs(psi) <= 0.5 * M_PI) return std::clamp(0.5 * (std::tan(0.5 * psi) + 1.0), 0.0, 1.0);
+  const double p = psi > 0 ? psi - M_PI : psi + M_PI;
+  return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
+}
+
 class Solver {
  public:
   Solver(const std::vector<Element>* elems, const Pose* poses, bool coaxial)
@@ -722,12 +729,6 @@ class Solver {
     return 0.5 * (lo + hi);
   }
   static double sq2(double x) { return x * x; }
-  // Inverse of psi_of (the chart of solid_exact_internal.h).
-  static double s_of(double psi) {
-    if (std::abs(psi) <= 0.5 * M_PI) return std::clamp(0.5 * (std::tan(0.5 * psi) + 1.0), 0.0, 1.0);
-    const double p = psi > 0 ? psi - M_PI : psi + M_PI;
-    return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
-  }
 
  public:
 
@@ -768,14 +769,6 @@ double thread_cpu_ms() {
   timespec ts;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
-
-// The inverse of psi_of: the chart parameter s in [0, 2] of angle psi (radians, any turn).
-double s_of_psi(double psi) {
-  psi = std::remainder(psi, 2 * M_PI);  // [-pi, pi]
-  if (std::abs(psi) <= 0.5 * M_PI) return 0.5 * (std::tan(0.5 * psi) + 1.0);
-  const double q = psi > 0 ? psi - M_PI : psi + M_PI;  // the second chart, shifted by a half turn
-  return 1.0 + 0.5 * (std::tan(0.5 * q) + 1.0);
 }
 
 double round_down_sqrt(double x) { return x > 0 ? std::nextafter(std::sqrt(x), 0.0) : 0.0; }
@@ -975,7 +968,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   if (lsq <= 0.0) {
     for (int side = 0; side < 2; ++side) {
       const Vec3 l = poses[side].rotation().transpose() * (w[side] - poses[side].translation);
-      const double s0 = s_of_psi(std::atan2(l.y(), l.x()));
+      const double s0 = s_of(std::atan2(l.y(), l.x()));
       for (std::size_t e = 0; e < elems[side].size(); ++e)
         for (double u : {0.0, 1.0})
           for (double ds : {0.0, 1e-6, -1e-6, 1e-4, -1e-4, 1e-2, -1e-2}) {
