@@ -438,8 +438,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const Vec3 x = pa.R * warm->a_local + pa.t, y = pb.R * warm->b_local + pb.t;
     const bool x_in = A.side_of(x, round) != Side::outside, y_in = B.side_of(y, round) != Side::outside;
     if (warm->overlap) {
-      if (x_in && B.side_of(x, round) == Side::inside) return proven_overlap(x);
-      if (y_in && A.side_of(y, round) == Side::inside) return proven_overlap(y);
+      if ((x_in && in_b(x)) || (y_in && in_a(y))) return proven_overlap(shared);
     }
     if (x_in && y_in) {
       ub = (x - y).norm() + up_round + 2 * round;
@@ -459,8 +458,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // Coincident surfaces leave those points undecided: an interior point of
     // one solid inside the other still proves the overlap.
     Vec3 p;
-    if (containment_unknown && A.interior_point(&p) && B.side_of(p, round) == Side::inside) return proven_overlap(p);
-    if (containment_unknown && B.interior_point(&p) && A.side_of(p, round) == Side::inside) return proven_overlap(p);
+    if (containment_unknown && A.interior_point(&p) && in_b(p)) return proven_overlap(shared);
+    if (containment_unknown && B.interior_point(&p) && in_a(p)) return proven_overlap(shared);
   }
 
   // A witness pair before the traversal: a few rounds of alternating
@@ -703,19 +702,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         all_separated = false;
         lb_pair = std::min(lb_pair, std::max(disk, 0.0));
         fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
-        // The patches may cross: try to prove that the solids overlap.
-        for (const Vec3& x : {r.a_low, r.a_high}) {
-          const Vec3 t = A.true_point(fa, x);
-          if (B.side_of(t, round) == Side::inside) return proven_overlap(t);
-        }
-        for (const Vec3& y : {r.b_low, r.b_high}) {
-          const Vec3 t = B.true_point(fb, y);
-          if (A.side_of(t, round) == Side::inside) return proven_overlap(t);
-        }
-        // The candidate pair's points and, along their meridians, the input
-        // curve beyond the fits' spans (a crossing at a sharp edge).
-        if (r.found && (in_b(A.true_point(fa, r.x)) || in_a(B.true_point(fb, r.y)) ||
-                        A.along_meridian(fa, r.x, 3, in_b) || B.along_meridian(fb, r.y, 3, in_a)))
+        // The patches may cross: try to prove that the solids overlap, from
+        // the patch points most inside the other solid, then the candidate
+        // pair's points and, along their meridians, the input curve beyond
+        // the fits' spans (a crossing at a sharp edge).
+        if (in_b(A.true_point(fa, r.a_low)) || in_b(A.true_point(fa, r.a_high)) ||
+            in_a(B.true_point(fb, r.b_low)) || in_a(B.true_point(fb, r.b_high)) ||
+            (r.found && (in_b(A.true_point(fa, r.x)) || in_a(B.true_point(fb, r.y)) ||
+                         A.along_meridian(fa, r.x, 3, in_b) || B.along_meridian(fb, r.y, 3, in_a))))
           return proven_overlap(shared);
         // No shared point proven: a point where the fits cross still gives a
         // witness pair within the fits' errors, so touching solids need not

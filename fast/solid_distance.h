@@ -82,7 +82,8 @@ struct WarmStart {
   Vec3 a_local = Vec3::Zero(), b_local = Vec3::Zero();
 };
 // The warm start a result leaves for the next pose (a and b: the poses it was
-// computed at). Invalid when the result has no points (an empty profile).
+// computed at). Invalid when the result's upper bound is not finite (no
+// candidate pair); whatever it holds, the next query checks its points.
 WarmStart warm_start_of(const SolidDistanceResult& r, const PosedSolid& a, const PosedSolid& b);
 SolidDistanceResult solid_distance(const PosedSolid& a, const PosedSolid& b, const DistanceOptions& options,
                                    const WarmStart& warm);

@@ -111,8 +111,8 @@ MUTANTS = [
      "    if (x_in && y_in) {", "    if (true) {",
      "warm start: the previous answer's points used as an upper bound without checking they lie in their solids"),
     ("warm_overlap_unchecked", "fast/solid_distance.cpp",
-     "if (x_in && B.side_of(x, round) == Side::inside) return proven_overlap(x);",
-     "if (x_in) return proven_overlap(x);",
+     "if ((x_in && in_b(x)) || (y_in && in_a(y))) return proven_overlap(shared);",
+     "if (x_in || y_in) return proven_overlap(x_in ? x : y);",
      "warm start: a previous overlap taken as proven without testing its point against the other solid"),
 ]
 
