@@ -480,6 +480,89 @@ struct BoxedPatch {
 
 }  // namespace
 
+Vec3 patch_point(const Patch& P, double u, double th) {
+  Vec3 e1, e2;
+  axis_frame(P, &e1, &e2);
+  const Vec2 q = meridian_point(P, u);
+  return P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+}
+
+double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
+  Vec3 er;
+  const Vec2 q = patch_local(Q, x, &er);
+  Vec2 best = Q.p0;
+  double d = (q - Q.p0).norm();
+  if (const double d1 = (q - Q.p1).norm(); d1 < d) d = d1, best = Q.p1;
+  if (Q.straight) {
+    const Vec2 s = Q.p1 - Q.p0;
+    const double len2 = s.squaredNorm();
+    const double t = len2 > 0 ? (q - Q.p0).dot(s) / len2 : -1.0;
+    if (t > 0 && t < 1) {
+      const Vec2 foot = Q.p0 + t * s;
+      if (const double df = (q - foot).norm(); df < d) d = df, best = foot;
+    }
+  } else {
+    const Vec2 v = q - Q.c;
+    const double D = v.norm();
+    const GaussWindow w = gauss_window(Q);
+    if (D > 0 && v.dot(w.mid) >= w.cos_h * D) {
+      const Vec2 foot = Q.c + Q.rho * v / D;
+      if (const double df = std::abs(D - Q.rho); foot.x() >= 0 && df < d) d = df, best = foot;
+    }
+  }
+  *y = patch_world(Q, best, er);
+  return d;
+}
+
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec3* x, Vec3* y) {
+  Vec3 yy;
+  auto f = [&](double u, double th) { return patch_nearest(Q, patch_point(P, u, th), &yy); };
+  // Steps of the finite differences, in profile fraction and radians: small
+  // against a patch, large against rounding (second differences lose
+  // ~1e-16 / 1e-8 of the distance's scale, far below what a start needs).
+  const BoxedPatch bp(P);
+  const double hu = 1e-4, ht = 1e-4;
+  double u = std::clamp(start.x(), 0.0, 1.0), th = start.y();
+  double fu = f(u, th);
+  for (int it = 0; it < 8; ++it) {
+    // Central differences (one-sided at the ends of [0, 1]).
+    const double u_lo = std::max(0.0, u - hu), u_hi = std::min(1.0, u + hu);
+    const double fl = f(u_lo, th), fh = f(u_hi, th), ftl = f(u, th - ht), fth = f(u, th + ht);
+    const double f_hh = f(u_hi, th + ht);
+    const double g_u = (fh - fl) / (u_hi - u_lo), g_t = (fth - ftl) / (2 * ht);
+    const double h_tt = (fth - 2 * fu + ftl) / (ht * ht);
+    double h_uu = 0.0;
+    if (u_hi - u > 0 && u - u_lo > 0) h_uu = (fh - 2 * fu + fl) / (hu * hu);
+    const double h_ut = (f_hh - fh - fth + fu) / ((u_hi - u) * ht);
+    // Newton step on (u, th) when the Hessian is positive definite, else on th
+    // alone (u then follows its gradient to the nearer end).
+    double su, st;
+    const double det = h_uu * h_tt - h_ut * h_ut;
+    if (h_uu > 0 && det > 0) {
+      su = -(h_tt * g_u - h_ut * g_t) / det;
+      st = -(h_uu * g_t - h_ut * g_u) / det;
+    } else {
+      st = h_tt > 0 ? -g_t / h_tt : (g_t > 0 ? -0.05 : 0.05);
+      su = g_u > 0 ? -1.0 : 1.0;
+    }
+    st = std::clamp(st, -0.5, 0.5);
+    // Damped: halve until the distance goes down.
+    bool moved = false;
+    for (double lam = 1.0; lam > 1e-3; lam *= 0.5) {
+      const double un = std::clamp(u + lam * su, 0.0, 1.0), tn = th + lam * st;
+      const double fn = f(un, tn);
+      if (fn < fu) {
+        moved = std::abs(un - u) > 1e-9 || std::abs(tn - th) * bp.rmax > 1e-9 * (bp.rmax + bp.len);
+        u = un, th = tn, fu = fn;
+        break;
+      }
+    }
+    if (!moved) break;
+  }
+  *x = patch_point(P, u, th);
+  return patch_nearest(Q, *x, y);
+}
+
 bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
   Vec3 e1, e2;
   axis_frame(P, &e1, &e2);
@@ -605,7 +688,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
 }
 
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
-                      int* evals_out) {
+                      int* evals_out, Vec2* closer) {
   // The distance from x to Q's patch is the least of up to three pieces, each
   // a smooth function of x away from Q's axis: the distances to Q's two end
   // circles (|q - p_i| in Q's half-plane) and, where x's direction from the
@@ -746,7 +829,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
         piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam);
       }
     }
-    if (truth < cut) return done(false);  // a point of P is closer: not provable
+    if (truth < cut) {  // a point of P is closer: not provable
+      if (closer) *closer = Vec2(b.um, b.tm);
+      return done(false);
+    }
     if (lb >= cut) {
       least = std::min(least, lb);
       continue;

@@ -84,7 +84,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 // the distance to the arc's circle (or the segment's line) when x's
 // direction from its centre (or its projection) falls in the arc (segment),
 // else to the nearer end. The boxes of the smaller patch (profile range x
-// azimuth range, from 16 sectors) are bounded by that function at the box's
+// azimuth range, from 8 sectors) are bounded by that function at the box's
 // centre less a first- or second-order remainder (as in patches_apart), and
 // split until every box clears `cut` or the budget is spent. True when every
 // box clears: *lower is then the least box bound (>= cut), a lower bound on
@@ -92,8 +92,28 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 // than cut (the pair really is) or the budget runs out; *evals counts boxes.
 // margin: the rounding allowance of the evaluations (a few ulps of the
 // coordinates).
+// closer: when the proof fails because a box's centre is closer than cut, that
+// centre's parameters (profile fraction u, azimuth about P's axis as measured
+// by patch_point), a start for patch_pair_descent.
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
-                      int* evals = nullptr);
+                      int* evals = nullptr, Vec2* closer = nullptr);
+
+// The point of patch P at profile fraction u in [0, 1] and azimuth th (from a
+// fixed direction normal to P's axis).
+Vec3 patch_point(const Patch& P, double u, double th);
+
+// The nearest point *y of patch Q's surface (arc or segment rotated) to world
+// point x, and its distance. The nearest point of a surface of revolution lies
+// in x's meridian half-plane: the nearer end point, or the foot on the arc's
+// circle (the segment's line) when it falls within the arc (segment).
+double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y);
+
+// A pair of points (x on P, y on Q) near a local minimum of their distance,
+// from P's parameters `start` (u, th): damped Newton steps on the distance
+// from P(u, th) to Q (patch_nearest), with finite differences, u kept in
+// [0, 1]. Only a candidate pair (both points genuine, to rounding): nothing is
+// proven about it. Returns their distance.
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec3* x, Vec3* y);
 
 // A point where patch P crosses patch Q, from two points of P on either side
 // of Q's whole surface (the kernel's a_low and a_high): bisection along the

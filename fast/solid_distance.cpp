@@ -42,6 +42,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Boxes the local proof (patches_at_least) may evaluate per patch pair before
 // the enumeration takes over.
 constexpr int kLocalBudget = 128;
+// Boxes for the second try of the local proof, at the cut lowered by the pair's
+// own local minimum: the minimum then sits within about tol of the cut, which
+// takes smaller boxes. An enumeration costs about as much as 340 boxes (probe:
+// 155 K instructions against 460 a box); 512 settles 86 % of the second tries
+// (128: 49 %).
+constexpr int kRetryBudget = 512;
 
 struct Part {
   std::int32_t node = -1;   // tree node, -1 for a refinement
@@ -667,9 +673,28 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           int evals = 0;
           Vec3 cp, cq;
           const bool p_small = patch_extent(P, &cp) <= patch_extent(Q, &cq);
-          const bool proven = p_small ? patches_at_least(P, Q, kernel_cut, round, kLocalBudget, &local, &evals)
-                                      : patches_at_least(Q, P, kernel_cut, round, kLocalBudget, &local, &evals);
+          const Patch& S = p_small ? P : Q;  // boxed
+          const Patch& O = p_small ? Q : P;
+          Vec2 closer(kInf, 0.0);
+          bool proven = patches_at_least(S, O, kernel_cut, round, kLocalBudget, &local, &evals, &closer);
           st.local_boxes += evals;
+          // A point of the boxed patch closer than the cut (the pair holds a
+          // better candidate): descend from it to the pair's local minimum and
+          // offer that pair; with the upper bound lowered, the proof may hold
+          // at the new cut without the enumeration. (Only while the bracket is
+          // away from 0: crossing patches go on to the overlap probes.)
+          if (!proven && std::isfinite(closer.x())) {
+            Vec3 xs, xo;
+            patch_pair_descent(S, O, closer, &xs, &xo);
+            const Vec3& x = p_small ? xs : xo;
+            const Vec3& y = p_small ? xo : xs;
+            if ((x - y).norm() - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
+            const double cut2 = cut() + fa.eps + fb.eps + round;
+            if (cut() > 0 && cut2 < kernel_cut) {
+              proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
+              st.local_boxes += evals;
+            }
+          }
           if (proven) {
             ++st.local_pairs;
             settle(std::max(quick.lower, local));

@@ -454,6 +454,54 @@ TEST_P(PatchVsBrute, LocalProofNeverAboveTheTruth) {
   EXPECT_GT(proven_below, separated);
 }
 
+// The descent the query uses before a second local proof (patch_pair_descent,
+// from a coarse grid point of A nearest to B): its pair is genuine (x on A, y
+// on B, their distance what patch_nearest says), never below the truth, never
+// worse than its start, and, not vacuous, at the enumeration's minimum for
+// most separated pairs (a descent may stop in another local minimum).
+TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
+  const Kind k = GetParam();
+  std::mt19937_64 g = kind_rng(k, 41);
+  int separated = 0, at_min = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch &A = t.p.A, &B = t.p.B;
+    if (!t.r.separated || t.r.degenerate) continue;
+    ++separated;
+    const double truth = t.r.upper;
+    const double on = std::max(point_patch_distance(A, t.r.x), point_patch_distance(B, t.r.y));
+    // Rounding of points built on the patches: ulps of the coordinates and,
+    // for a nearly straight arc, of its far-off centre (c + rho v).
+    const double span = std::max({t.coord, 8.0, A.straight ? 0.0 : A.c.norm() + A.rho, B.straight ? 0.0 : B.c.norm() + B.rho});
+    const double ulps = 1024 * kEps * span;  // the kernel's own points: up to 714 ulps (above)
+    const double slack = 2 * on + 4 * ulps;
+    Vec2 start;
+    double start_d = INFINITY;
+    for (int i = 0; i <= 12; ++i)
+      for (int j = 0; j < 24; ++j) {
+        const Vec2 ut(i / 12.0, -M_PI + 2 * M_PI * j / 24);
+        Vec3 y;
+        const Vec3 x = patch_point(A, ut.x(), ut.y());
+        const double d = patch_nearest(B, x, &y);
+        // patch_nearest is the meridian-plane distance, at a genuine point.
+        EXPECT_NEAR(d, point_patch_distance(B, x), ulps);
+        EXPECT_LE(point_patch_distance(B, y), ulps);
+        EXPECT_NEAR((x - y).norm(), d, ulps);
+        if (d < start_d) start_d = d, start = ut;
+      }
+    Vec3 x, y;
+    const double d = patch_pair_descent(A, B, start, &x, &y);
+    EXPECT_LE(point_patch_distance(A, x), ulps) << "trial " << trial;
+    EXPECT_LE(point_patch_distance(B, y), ulps) << "trial " << trial;
+    EXPECT_NEAR((x - y).norm(), d, ulps);
+    EXPECT_GE(d, truth - slack) << "trial " << trial;
+    EXPECT_LE(d, start_d) << "trial " << trial;
+    if (d <= truth + 1e-9) ++at_min;
+  }
+  std::printf("%s: the descent reaches the minimum (1e-9) on %d of %d separated pairs\n", k.name, at_min, separated);
+  EXPECT_GT(2 * at_min, separated);
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, PatchVsBrute,
                          testing::Values(Kind{false, false, "torus_torus"}, Kind{false, true, "torus_cone"},
                                          Kind{true, false, "cone_torus"}, Kind{true, true, "cone_cone"}),
