@@ -480,11 +480,18 @@ struct BoxedPatch {
 
 }  // namespace
 
+namespace {
+// patch_point with P's axis frame (axis_frame) given.
+Vec3 framed_point(const Patch& P, const Vec3& e1, const Vec3& e2, double u, double th) {
+  const Vec2 q = meridian_point(P, u);
+  return P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+}
+}  // namespace
+
 Vec3 patch_point(const Patch& P, double u, double th) {
   Vec3 e1, e2;
   axis_frame(P, &e1, &e2);
-  const Vec2 q = meridian_point(P, u);
-  return P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+  return framed_point(P, e1, e2, u, th);
 }
 
 double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
@@ -514,9 +521,10 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
   return d;
 }
 
-double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec3* x, Vec3* y) {
-  Vec3 yy;
-  auto f = [&](double u, double th) { return patch_nearest(Q, patch_point(P, u, th), &yy); };
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
+  Vec3 e1, e2, yy;
+  axis_frame(P, &e1, &e2);
+  auto f = [&](double u, double th) { return patch_nearest(Q, framed_point(P, e1, e2, u, th), &yy); };
   // Steps of the finite differences, in profile fraction and radians: small
   // against a patch, large against rounding (second differences lose
   // ~1e-16 / 1e-8 of the distance's scale, far below what a start needs).
@@ -537,10 +545,12 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec
     // Newton step on (u, th) when the Hessian is positive definite, else on th
     // alone (u then follows its gradient to the nearer end).
     double su, st;
+    bool last = false;  // the Newton step's predicted decrease is below the resolution
     const double det = h_uu * h_tt - h_ut * h_ut;
     if (h_uu > 0 && det > 0) {
       su = -(h_tt * g_u - h_ut * g_t) / det;
       st = -(h_uu * g_t - h_ut * g_u) / det;
+      last = -0.5 * (g_u * su + g_t * st) <= resolution;
     } else {
       st = h_tt > 0 ? -g_t / h_tt : (g_t > 0 ? -0.05 : 0.05);
       su = g_u > 0 ? -1.0 : 1.0;
@@ -557,9 +567,9 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec
         break;
       }
     }
-    if (!moved) break;
+    if (!moved || last) break;
   }
-  *x = patch_point(P, u, th);
+  *x = framed_point(P, e1, e2, u, th);
   return patch_nearest(Q, *x, y);
 }
 

@@ -111,9 +111,10 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y);
 // A pair of points (x on P, y on Q) near a local minimum of their distance,
 // from P's parameters `start` (u, th): damped Newton steps on the distance
 // from P(u, th) to Q (patch_nearest), with finite differences, u kept in
-// [0, 1]. Only a candidate pair (both points genuine, to rounding): nothing is
-// proven about it. Returns their distance.
-double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, Vec3* x, Vec3* y);
+// [0, 1], until a Newton step promises less than `resolution`. Only a
+// candidate pair (both points genuine, to rounding): nothing is proven about
+// it. Returns their distance.
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y);
 
 // A point where patch P crosses patch Q, from two points of P on either side
 // of Q's whole surface (the kernel's a_low and a_high): bisection along the

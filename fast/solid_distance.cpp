@@ -685,7 +685,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           // away from 0: crossing patches go on to the overlap probes.)
           if (!proven && std::isfinite(closer.x())) {
             Vec3 xs, xo;
-            patch_pair_descent(S, O, closer, &xs, &xo);
+            patch_pair_descent(S, O, closer, 1e-3 * opt.tol, &xs, &xo);
             const Vec3& x = p_small ? xs : xo;
             const Vec3& y = p_small ? xo : xs;
             if ((x - y).norm() - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));

@@ -490,7 +490,7 @@ TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
         if (d < start_d) start_d = d, start = ut;
       }
     Vec3 x, y;
-    const double d = patch_pair_descent(A, B, start, &x, &y);
+    const double d = patch_pair_descent(A, B, start, 1e-12, &x, &y);
     EXPECT_LE(point_patch_distance(A, x), ulps) << "trial " << trial;
     EXPECT_LE(point_patch_distance(B, y), ulps) << "trial " << trial;
     EXPECT_NEAR((x - y).norm(), d, ulps);
