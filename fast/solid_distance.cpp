@@ -685,12 +685,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           // away from 0: crossing patches go on to the overlap probes.)
           if (!proven && std::isfinite(closer.x())) {
             Vec3 xs, xo;
-            patch_pair_descent(S, O, closer, 1e-3 * opt.tol, &xs, &xo);
+            const double d = patch_pair_descent(S, O, closer, 1e-3 * opt.tol, &xs, &xo);
             const Vec3& x = p_small ? xs : xo;
             const Vec3& y = p_small ? xo : xs;
-            if ((x - y).norm() - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
+            if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
             const double cut2 = cut() + fa.eps + fb.eps + round;
-            if (cut() > 0 && cut2 < kernel_cut) {
+            if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
               st.local_boxes += evals;
             }
