@@ -52,6 +52,8 @@ void run(const Options& o) {
       std::fprintf(stderr, "bench: %s\n", line.c_str());
   };
   const BenchInput in = o.target == "paper" ? paper_bench_input(default_models_dir()) : case_bench_input(o.target);
+  check_bench(in, bo);
+  prepare_output_dir(o.out);
   std::fprintf(stderr, "bench: %s, %d frames per pair, seed %llu (REVDIST_SEED or --seed to repeat)\n",
                in.source.c_str(), bo.frames, static_cast<unsigned long long>(bo.seed));
   const BenchResult r = run_bench(in, bo);

@@ -31,8 +31,12 @@ void run(Options o) {
     if (!(e > 0)) throw InputError("--eps: every value must be positive");
   for (double t : o.compare.tol)
     if (!(t > 0)) throw InputError("--tol: every value must be positive");
-  if (o.compare.repeat < 1 || o.compare.frames < 0) throw InputError("--repeat must be >= 1 and --frames >= 0");
+  // (Upper limits: a billion frames allocated 3.7 GB before the first query.)
+  if (o.compare.repeat < 1 || o.compare.repeat > 1000 || o.compare.frames < 0 || o.compare.frames > 100000)
+    throw InputError("--repeat must be in 1..1000 and --frames in 0..100000");
   o.compare.arc_model = !o.no_model;
+  check_compare(o.cases, o.compare);  // every case read and every eps checked before any work
+  prepare_output_dir(o.out);
   bool shown = false;
   const CompareOutput out = run_compare(o.cases, o.compare, StressEngines{}, [&](const std::string& what) {
     std::fprintf(stderr, "\rcompare: %-70.70s", what.c_str());

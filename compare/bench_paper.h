@@ -89,6 +89,10 @@ struct BenchResult {
   double cpu_s = 0.0;  // thread CPU time of the whole run
 };
 
+// Refuses, with an InputError and before any work, what the run could not do:
+// no eps, frames < 1, an eps below what doubles resolve for a solid (1e-12 of
+// its extent), or an FCL mesh beyond kMaxMeshTriangles (compare/mesh_fcl.h).
+void check_bench(const BenchInput& input, const BenchOptions& options);
 BenchResult run_bench(const BenchInput& input, const BenchOptions& options);
 
 }  // namespace revdist

@@ -34,6 +34,11 @@ struct CompareOutput {
 };
 
 // Throws InputError (via read_case) on a bad case file.
+// Refuses, with an InputError and before any work, what run_compare could not
+// do: a case that does not read, an eps below what doubles resolve for a case
+// (core/case_scale.h), or an FCL mesh beyond kMaxMeshTriangles (compare/mesh_fcl.h).
+void check_compare(const std::vector<std::string>& cases, const CompareOptions& options);
+
 CompareOutput run_compare(const std::vector<std::string>& cases, const CompareOptions& options,
                           const StressEngines& engines = {}, const std::function<void(const std::string&)>& progress = {});
 

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
+#include <string>
 
 #include "core/curve_eval.h"
 
@@ -23,24 +25,30 @@ double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
   return (a + t * d - q).norm();
 }
 
-// Parameters of one piece's chords, u0 first, each chord within eps / 2 of the curve.
-std::vector<double> piece_breaks(const Piece& piece, double eps) {
+// Parameters of one piece's chords, u0 first, each chord within eps / 2 of the
+// curve; false (and *us unusable) once more than `cap` chords would be needed.
+bool piece_breaks(const Piece& piece, double eps, std::size_t cap, std::vector<double>* us_out) {
+  std::vector<double>& us = *us_out;
   const auto [u0, u1] = piece_domain(piece);
-  std::vector<double> us = {u0};
+  us = {u0};
   if (piece.kind == PieceKind::line) {
     us.push_back(u1);
-    return us;
+    return true;
   }
   if (piece.kind == PieceKind::arc) {
     // Sagitta of a sub-arc of angle a: R (1 - cos(a / 2)) <= eps / 2.
     const ArcGeometry g = arc_geometry(piece);
     const double c = 1.0 - 0.5 * eps / g.radius;
     const double max_angle = c <= -1.0 ? M_PI : 2.0 * std::acos(std::max(-1.0, c));
-    const int n = std::max(1, static_cast<int>(std::ceil(std::abs(g.sweep) / max_angle)));
+    const double nd = std::max(1.0, std::ceil(std::abs(g.sweep) / max_angle));  // inf when eps is lost in rounding
+    if (!(nd <= static_cast<double>(cap))) return false;
+    const int n = static_cast<int>(nd);
     for (int i = 1; i <= n; ++i) us.push_back(i == n ? u1 : u0 + (u1 - u0) * i / n);
-    return us;
+    return true;
   }
+  bool over = false;
   std::function<void(double, double, int)> split = [&](double a, double b, int depth) {
+    if (over) return;
     const Vec2 pa = piece_point(piece, a), pb = piece_point(piece, b);
     double dev = 0.0;
     for (int k = 1; k < 16; ++k) dev = std::max(dev, segment_distance(piece_point(piece, a + (b - a) * k / 16), pa, pb));
@@ -49,10 +57,43 @@ std::vector<double> piece_breaks(const Piece& piece, double eps) {
       split(0.5 * (a + b), b, depth + 1);
     } else {
       us.push_back(b);
+      over = us.size() > cap;
     }
   };
   split(u0, u1, 0);
-  return us;
+  return !over;
+}
+
+// The profile points and the sectors of the mesh at eps; false when it would
+// have more than max_triangles triangles.
+struct MeshPlan {
+  std::vector<Vec2> pts;
+  int sectors = 0;
+  long triangles = 0;
+};
+bool plan_mesh(const Profile& profile, double eps, long max_triangles, MeshPlan* plan) {
+  std::vector<Vec2>& pts = plan->pts;
+  // At least 8 sectors, each chord off the axis 1 or 2 triangles a sector.
+  const std::size_t cap = static_cast<std::size_t>(max_triangles / 8) + 2;
+  std::vector<double> us;
+  for (const Piece& piece : profile.pieces) {
+    if (!piece_breaks(piece, eps, cap, &us)) return false;
+    // Pieces join exactly (case_io makes joins exact): skip the repeated start.
+    for (std::size_t k = pts.empty() ? 0 : 1; k < us.size(); ++k) pts.push_back(piece_point(piece, us[k]));
+    if (pts.size() > cap) return false;
+  }
+  double rmax = 0.0;
+  for (const Vec2& q : pts) rmax = std::max(rmax, q.x());
+  const double c = 1.0 - 0.5 * eps / std::max(rmax, 1e-300);
+  const double sd = c <= -1.0 ? 8.0 : std::max(8.0, std::ceil(M_PI / std::acos(std::max(-1.0, c))));
+  if (!(sd <= static_cast<double>(max_triangles))) return false;  // inf when eps is lost in rounding
+  plan->sectors = static_cast<int>(sd);
+  plan->triangles = 0;
+  for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+    const bool a0 = pts[k].x() == 0, b0 = pts[k + 1].x() == 0;
+    if (!(a0 && b0)) plan->triangles += (a0 || b0 ? 1 : 2) * static_cast<long>(plan->sectors);
+  }
+  return plan->triangles <= max_triangles;
 }
 
 fcl::Transform3d transform(const Mat3& R, const Vec3& t) {
@@ -64,19 +105,20 @@ fcl::Transform3d transform(const Mat3& R, const Vec3& t) {
 
 }  // namespace
 
+long mesh_triangles(const Profile& profile, double eps) {
+  MeshPlan plan;
+  return plan_mesh(profile, eps, kMaxMeshTriangles, &plan) ? plan.triangles : -1;
+}
+
 SolidMesh mesh_solid(const Profile& profile, double eps) {
   SolidMesh m;
   m.eps = eps;
-  std::vector<Vec2> pts;
-  for (const Piece& piece : profile.pieces) {
-    const std::vector<double> us = piece_breaks(piece, eps);
-    // Pieces join exactly (case_io makes joins exact): skip the repeated start.
-    for (std::size_t k = pts.empty() ? 0 : 1; k < us.size(); ++k) pts.push_back(piece_point(piece, us[k]));
-  }
-  double rmax = 0.0;
-  for (const Vec2& q : pts) rmax = std::max(rmax, q.x());
-  const double c = 1.0 - 0.5 * eps / std::max(rmax, 1e-300);
-  m.sectors = c <= -1.0 ? 8 : std::max(8, static_cast<int>(std::ceil(M_PI / std::acos(std::max(-1.0, c)))));
+  MeshPlan plan;
+  if (!plan_mesh(profile, eps, kMaxMeshTriangles, &plan))
+    throw std::length_error("mesh at eps " + std::to_string(eps) + " beyond " + std::to_string(kMaxMeshTriangles) +
+                            " triangles");
+  const std::vector<Vec2>& pts = plan.pts;
+  m.sectors = plan.sectors;
   m.rings = static_cast<int>(pts.size());
   const int nt = m.sectors;
   std::vector<int> ring_start;

@@ -28,7 +28,16 @@ struct SolidMesh {
 // are cut into equal sub-arcs by their closed-form sagitta, curves by recursive
 // halving until 15 interior samples of each span lie within eps / 2 of its
 // chord (sampling: not a proof, which the report says).
+// Throws std::length_error beyond kMaxMeshTriangles (callers check first with
+// mesh_triangles, to refuse before any work).
 SolidMesh mesh_solid(const Profile& profile, double eps);
+
+// The most triangles one mesh may have: FCL's OBBRSS hierarchy takes ~520 bytes
+// a triangle (measured: 834K triangles, 430 MB), so about 2 GB.
+constexpr long kMaxMeshTriangles = 4000000;
+// The triangles mesh_solid(profile, eps) would make, -1 beyond kMaxMeshTriangles
+// (found without building the mesh; bounded work however small eps is).
+long mesh_triangles(const Profile& profile, double eps);
 
 // An FCL OBBRSS bounding-volume hierarchy of a mesh (opaque: FCL stays in the .cpp).
 class FclMesh;

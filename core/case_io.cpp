@@ -76,6 +76,10 @@ std::vector<double> read_weights(const Json& j, std::size_t count, const JsonWhe
   if (*hi > kMaxWeightRatio * *lo)
     where.fail("weights " + fmt(*lo) + " and " + fmt(*hi) + " differ by more than a factor " +
                fmt(kMaxWeightRatio) + " (the curve degenerates towards one control point)");
+  // Scaled (exactly, by a power of two) to a largest weight in [1, 2): weights of
+  // 5e-324 or 1.7e308, a valid curve, underflowed or overflowed the evaluation.
+  const int e = std::ilogb(*hi);
+  for (double& v : w) v = std::ldexp(v, -e);
   return w;
 }
 
@@ -96,6 +100,9 @@ void check_knots(const Piece& p, const JsonWhere& where) {
     if (t[i] != t[0] || t[t.size() - 1 - i] != t.back())
       where.fail("knots not clamped: the first and the last " + std::to_string(deg + 1) + " knots must be equal");
   if (!(t.front() < t.back())) where.fail("the knot vector has zero length");
+  // Only the knots' ratios matter, but their differences must be finite doubles.
+  if (!(std::abs(t.front()) <= kMaxMagnitude && std::abs(t.back()) <= kMaxMagnitude))
+    where.fail("knots " + fmt(t.front()) + " .. " + fmt(t.back()) + " outside +-" + fmt(kMaxMagnitude));
   for (std::size_t i = deg + 1; i < n;) {
     std::size_t k = i;
     while (k < n && t[k] == t[i]) ++k;

@@ -304,6 +304,10 @@ void check_profile(const Profile& profile, const std::string& where) {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const BezierSegment all{ps[i].points, {}, 0, 1};
     if (diameter(all) <= tol) fail_piece(where, i, "degenerate piece (all its points within " + fmt(tol) + ")");
+    // (A curve lies within the hull of its control points.)
+    double r_max = 0;
+    for (const Vec2& q : ps[i].points) r_max = std::max(r_max, q.x());
+    if (r_max <= tol) fail_piece(where, i, "lies on the axis (r = 0 throughout): it bounds no volume");
     for (const BezierSegment& s : piece_bezier_segments(ps[i])) {
       Vec2 at;
       if (profile.closed_loop && r_below(s, tol, 40, &at))

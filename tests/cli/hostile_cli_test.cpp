@@ -211,3 +211,60 @@ TEST(HostileCli, SvgAllOrNothingWithDistinctNames) {
 }
 
 }  // namespace
+
+namespace audit {
+
+// A case of two solids "a" (at the origin) and "b" (3 along x) of one profile.
+std::string two_of(const std::string& profile) {
+  return R"({"format": "revdist/1", "solids": {"s": {"profile": )" + profile +
+         R"(}}, "instances": [{"name": "a", "solid": "s"}, {"name": "b", "solid": "s", "translation": [3, 0, 0]}]})";
+}
+
+std::string write(const std::string& stem, const std::string& text) {
+  const std::string file = temp_path(stem);
+  std::ofstream(file) << text;
+  return file;
+}
+
+}  // namespace audit
+
+// The hostile-input audit of 2026-11-26: each of these crashed, ran out of memory
+// or never ended before; now refused with one line (exit 2) before any work, or
+// answered.
+TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
+  // A knot span that overflows to infinity (SIGSEGV in every command).
+  const std::string knots = audit::write(
+      "knots.json", audit::two_of(R"([{"bspline": {"degree": 2, "knots": [-1e308, -1e308, -1e308, 1e308, 1e308, 1e308],
+                                     "points": [[0, 0], [1, 1], [0, 2]]}}])"));
+  expect_one_line_error(run("distance " + knots), "knots -1e+308 .. 1e+308 outside");
+  // A profile lying on the axis: no volume (compare and bench crashed on it).
+  const std::string axis = audit::write("axis.json", audit::two_of(R"([{"line": [[0, 0], [0, 1]]}])"));
+  expect_one_line_error(run("distance " + axis), "lies on the axis");
+  expect_one_line_error(run("compare " + axis + " --out " + temp_path("out")), "lies on the axis");
+  // Equal weights are the unweighted curve, however small or large (fit never ended).
+  for (const char* w : {"5e-324", "1.7e308"}) {
+    const std::string ws = std::string("[") + w + ", " + w + ", " + w + ", " + w + "]";
+    const std::string f = audit::write(
+        "weights.json", audit::two_of(R"([{"bezier": [[0, -1], [1, -1], [1, 1], [0, 1]], "weights": )" + ws + "}]"));
+    const CommandRun r = run("distance " + f + " --json");
+    ASSERT_EQ(r.status, 0) << w << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(j["results"][0]["distance"].get<double>(), 1.5, 1e-5) << w;
+  }
+  // compare / bench: an eps below rounding (SIGSEGV) or a mesh beyond memory
+  // (6 GB, then bad_alloc), a second case that does not read (refused after
+  // 24 s of work), an --out that is a file (exit 1 after all the work).
+  const std::string balls = src("cases/distance/two_spheres.json");
+  const std::string out = temp_path("out");
+  expect_one_line_error(run("compare " + balls + " --eps 1e-20 --out " + out), "below the smallest meaningful");
+  expect_one_line_error(run("compare " + balls + " --eps 1e-9 --out " + out), "would exceed 4000000 triangles");
+  expect_one_line_error(run("compare " + balls + " " + src("cases/bad/fold_back.json") + " --out " + out),
+                        "fold_back.json");
+  expect_one_line_error(run("bench " + balls + " --eps 1e-20 --frames 1 --out " + out), "below the smallest");
+  expect_one_line_error(run("bench " + balls + " --eps 1e-8 --frames 1 --out " + out), "--no-fcl");
+  const std::string file = audit::write("a_file", "x");
+  expect_one_line_error(run("compare " + balls + " --out " + file), "exists and is not a directory");
+  expect_one_line_error(run("bench " + balls + " --frames 1 --out " + file), "exists and is not a directory");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  for (const std::string& f : {knots, axis, file}) std::remove(f.c_str());
+}
