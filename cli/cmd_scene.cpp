@@ -15,6 +15,7 @@
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
 #include "core/input_error.h"
+#include "core/json_util.h"
 #include "fast/scene/scene.h"
 
 namespace revdist::cli {
@@ -28,6 +29,7 @@ struct Options {
   double within = -1;  // < 0: not asked
   long closest = 0;    // 0: not asked
   std::string nearest;
+  bool nearest_given = false;
   long frames = 1;
   int threads = 1;
   double eps = 1e-5;
@@ -62,8 +64,21 @@ void run(const Options& o) {
     throw InputError("--eps and --tol must be positive");
   const int asked = (o.within >= 0) + (o.closest > 0 && o.nearest.empty()) + !o.nearest.empty();
   if (asked > 1) throw InputError("ask one of --within, --closest, --nearest (with --closest K for K neighbours)");
-  if (o.within >= 0 && !std::isfinite(o.within)) throw InputError("--within must be a finite distance >= 0");
+  if (std::isnan(o.within) || (o.within >= 0 && !std::isfinite(o.within)))
+    throw InputError("--within must be a finite distance >= 0");
+  if (o.nearest_given && o.nearest.empty()) throw InputError("--nearest: empty instance name");
   const Case c = read_case(o.file, false);
+  // Every pose of every frame in the coordinates' range (core/case_io.cpp), from
+  // the motion's terms: |translation(f)| <= |t| + F |v| + F^2 |a| / 2 + 2 |amplitude|.
+  const double F = static_cast<double>(o.frames - 1);
+  for (const Instance& ins : c.instances) {
+    const InstanceMotion& m = ins.motion;
+    const double reach = ins.pose.translation.norm() + F * m.velocity.norm() + 0.5 * F * F * m.acceleration.norm() +
+                         2 * m.wave_amplitude.norm();
+    if (!(reach <= 1e100))
+      throw InputError(o.file + ": instance " + quote(ins.name) + ": its motion leaves the supported range +-1e100 by frame " +
+                       std::to_string(o.frames - 1));
+  }
   std::size_t query_instance = 0;
   if (!o.nearest.empty()) {
     while (query_instance < c.instances.size() && c.instances[query_instance].name != o.nearest) ++query_instance;
@@ -160,9 +175,9 @@ void add_scene_command(CLI::App& app) {
   cmd->add_option("--within", opts->within, "every pair at distance <= D")->check(CLI::NonNegativeNumber);
   cmd->add_option("--closest", opts->closest, "the K closest pairs (default: 1, the scene's minimum)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--nearest", opts->nearest, "the K (--closest) nearest instances to this one");
-  cmd->add_option("--frames", opts->frames, "frames 0..N-1, instances moved by their motion")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+  CLI::Option* nearest = cmd->add_option("--nearest", opts->nearest, "the K (--closest) nearest instances to this one");
+  cmd->add_option("--frames", opts->frames, "frames 0..N-1, instances moved by their motion (at most 100000)")
+      ->check(CLI::Range(1L, 100000L))->capture_default_str();
   cmd->add_option("--threads", opts->threads, "worker threads (answers do not depend on it)")
       ->check(CLI::Range(1, 256))->capture_default_str();
   cmd->add_option("--eps", opts->eps, "biarc approximation bound (proven)")->capture_default_str();
@@ -173,7 +188,10 @@ void add_scene_command(CLI::App& app) {
                 "--within: recompute every pair each frame instead of settling it from its previous frame");
   cmd->add_flag("--lazy", opts->lazy,
                 "lazy biarc trees for deforming shapes (time_rate): nodes fitted when a query first reaches them");
-  cmd->callback([opts] { run(*opts); });
+  cmd->callback([opts, nearest] {
+    opts->nearest_given = nearest->count() > 0;
+    run(*opts);
+  });
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "cli/output.h"
 #include "compare/stress.h"
 #include "core/input_error.h"
+#include "core/json_util.h"
 
 namespace revdist::cli {
 
@@ -54,12 +55,10 @@ std::vector<std::string> family_names(const std::vector<std::string>& asked) {
 }
 
 StressReport read_report(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  // The case files' reader: a size limit, no endless device, NUL bytes refused.
+  const Json j = read_json_file(path);
   try {
-    return stress_from_json(Json::parse(ss.str()));
+    return stress_from_json(j);
   } catch (const Json::exception& e) {
     throw InputError(path + ": not JSON: " + e.what());
   } catch (const std::runtime_error& e) {
@@ -102,6 +101,7 @@ void print(const StressReport& r, bool json) {
 }
 
 void run(const Options& o) {
+  if (!o.save_worst.empty()) prepare_output_dir(o.save_worst);  // a file there fails now, not after the run
   if (!o.merge.empty()) {
     std::vector<StressReport> shards;
     for (const std::string& path : o.merge) shards.push_back(read_report(path));
@@ -142,7 +142,7 @@ void add_stress_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "stress", "Near-degenerate families checked against closed forms, a brute force on the true surfaces and exact/");
   cmd->add_option("--family", o->families, "family name, or all (repeatable)");
-  cmd->add_option("--n", o->n, "cases per family")->capture_default_str();
+  cmd->add_option("--n", o->n, "cases per family (at most 10000000)")->check(CLI::Range(0L, 10000000L))->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the case stream")->capture_default_str();
   cmd->add_flag("--json", o->json, "machine-readable JSON (revdist-stress/1)");
   cmd->add_option("--save-worst", o->save_worst, "write the worst case of each family as a case file into DIR");

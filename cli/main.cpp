@@ -10,16 +10,25 @@
 
 namespace {
 
-// Every message is one line whatever the input put into it (file names, keys).
+// Every message is one line whatever the input put into it (file names, keys):
+// control characters and the Unicode line breaks NEL (U+0085), LS and PS
+// (U+2028, U+2029) escaped, and at most 2000 bytes (a 100,000-digit number was
+// echoed whole).
 std::string one_line(const char* what) {
+  constexpr std::size_t kMax = 2000;
   std::string s;
-  for (const char* p = what; *p; ++p) {
+  for (const char* p = what; *p && s.size() < kMax; ++p) {
     const unsigned char c = static_cast<unsigned char>(*p);
+    const unsigned char c1 = static_cast<unsigned char>(p[1]);
     if (c == '\n') s += "\\n";
     else if (c == '\r') s += "\\r";
     else if (c < 0x20 || c == 0x7f) s += ' ';
+    else if (c == 0xC2 && c1 == 0x85) s += "\\u0085", ++p;
+    else if (c == 0xE2 && c1 == 0x80 && (static_cast<unsigned char>(p[2]) | 1) == 0xA9)
+      s += p[2] == '\xA8' ? "\\u2028" : "\\u2029", p += 2;
     else s += *p;
   }
+  if (s.size() >= kMax) s += "...";
   return s;
 }
 
@@ -55,7 +64,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);  // prints the usage error
+    // One line, as every other error (CLI11 adds a second, "Run with --help").
+    std::fprintf(stderr, "revdist: %s (see revdist --help)\n", one_line(e.what()).c_str());
     return 2;
   } catch (const revdist::InputError& e) {
     std::fprintf(stderr, "revdist: %s\n", one_line(e.what()).c_str());

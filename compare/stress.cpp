@@ -396,13 +396,23 @@ Json stress_json(const StressReport& r) {
 }
 
 StressReport stress_from_json(const Json& j) {
+  // Counts are integers in [0, 1e12] (a shard claiming -5 violations, n = 1.5 or
+  // 2^62 was merged before).
+  auto count = [](const Json& v, const std::string& what) {
+    if (!v.is_number_integer() || v.get<double>() < 0 || v.get<double>() > 1e12)
+      throw std::runtime_error(what + " must be an integer in [0, 1e12], got " + v.dump().substr(0, 40));
+    return v.get<long>();
+  };
   try {
     if (j.at("format") != "revdist-stress/1") throw std::runtime_error("not a revdist-stress/1 record");
     StressReport r;
     r.seed = j.at("seed").get<std::uint64_t>();
-    r.n = j.at("n").get<long>();
+    r.n = count(j.at("n"), "n");
     const std::string shard = j.at("shard").get<std::string>();
-    if (std::sscanf(shard.c_str(), "%d/%d", &r.shard_k, &r.shard_m) != 2) throw std::runtime_error("bad shard");
+    int used = 0;
+    if (std::sscanf(shard.c_str(), "%d/%d%n", &r.shard_k, &r.shard_m, &used) != 2 ||
+        used != static_cast<int>(shard.size()) || r.shard_k < 1 || r.shard_k > r.shard_m || r.shard_m > 100000)
+      throw std::runtime_error("bad shard \"" + shard.substr(0, 40) + "\" (K/M with 1 <= K <= M)");
     r.options.eps = j.at("eps").get<double>();
     r.options.tol = j.at("tol").get<double>();
     r.options.exact_every = j.at("exact_every").get<int>();
@@ -412,18 +422,20 @@ StressReport stress_from_json(const Json& j) {
       FamilyStats f;
       f.name = fj.at("name").get<std::string>();
       f.circle = fj.at("kind") == "circle";
-      f.n = fj.at("n").get<long>();
-      f.violations = fj.at("violations").get<long>();
+      f.n = count(fj.at("n"), f.name + " n");
+      f.violations = count(fj.at("violations"), f.name + " violations");
       f.max_abs_error = fj.at("max_abs_error").get<double>();
       f.max_rel_error = fj.at("max_rel_error").get<double>();
-      f.nans = fj.at("nans").get<long>();
-      f.not_converged = fj.at("not_converged").get<long>();
+      f.nans = count(fj.at("nans"), f.name + " nans");
+      f.not_converged = count(fj.at("not_converged"), f.name + " not_converged");
       f.time_s = fj.at("time_s").get<double>();
-      f.exact_checked = fj.at("exact_checked").get<long>();
-      f.exact_uncertified = fj.at("exact_uncertified").get<long>();
-      f.brute_checked = fj.at("brute_checked").get<long>();
-      f.expected_checked = fj.at("expected_checked").get<long>();
-      for (const auto& [k, v] : fj.at("violation_kinds").items()) f.kinds[k] = v.get<long>();
+      f.exact_checked = count(fj.at("exact_checked"), f.name + " exact_checked");
+      f.exact_uncertified = count(fj.at("exact_uncertified"), f.name + " exact_uncertified");
+      f.brute_checked = count(fj.at("brute_checked"), f.name + " brute_checked");
+      f.expected_checked = count(fj.at("expected_checked"), f.name + " expected_checked");
+      for (const auto& [k, v] : fj.at("violation_kinds").items()) f.kinds[k] = count(v, f.name + " " + k);
+      if (f.violations > f.n || f.nans > f.n || f.not_converged > f.n)
+        throw std::runtime_error(f.name + ": more violations, NaNs or unconverged cases than cases");
       const Json& w = fj.at("worst");
       f.worst_index = w.at("index").get<long>();
       f.worst_violation = w.at("violation").get<bool>();

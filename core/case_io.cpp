@@ -320,6 +320,20 @@ InstanceMotion read_motion(const Json& j, const JsonWhere& w) {
     if (wv.contains("phase")) m.wave_phase = read_number(wv["phase"], sub(ww, "phase"));
   }
   if (j.contains("time_rate")) m.time_rate = read_number(j["time_rate"], sub(w, "time_rate"));
+  // Rates in the coordinates' range (a spin of 1e160 overflowed its norm to inf and
+  // every later pose to NaN), a period whose 2 pi f / period stays finite.
+  auto within = [&](const Vec3& v, const char* what) {
+    if (!(v.cwiseAbs().maxCoeff() <= kMaxMagnitude))
+      sub(w, what).fail("a component beyond the supported range +-" + fmt(kMaxMagnitude));
+  };
+  within(m.velocity, "velocity");
+  within(m.acceleration, "acceleration");
+  within(m.spin, "spin");
+  within(m.wave_amplitude, "wave amplitude");
+  if (!(m.wave_period >= 1 / kMaxMagnitude && std::abs(m.wave_phase) <= kMaxMagnitude))
+    sub(w, "wave").fail("period " + fmt(m.wave_period) + " or phase " + fmt(m.wave_phase) +
+                        " outside [1e-100, 1e100] frames, +-1e100 radians");
+  if (!(std::abs(m.time_rate) <= kMaxMagnitude)) sub(w, "time_rate").fail("beyond +-" + fmt(kMaxMagnitude));
   return m;
 }
 

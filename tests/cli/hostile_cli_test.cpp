@@ -268,3 +268,49 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
   EXPECT_FALSE(std::filesystem::exists(out));
   for (const std::string& f : {knots, axis, file}) std::remove(f.c_str());
 }
+
+// The rest of that audit: answers that were not finite (exit 0) and flags taken
+// silently are refused with one line.
+TEST(HostileCli, AuditNonFiniteAnswersAndSilentFlagsAreRefused) {
+  // Circle centres 1e155 apart: "upper": null before (squares overflow).
+  const std::string circles = audit::write(
+      "circles.json", R"({"format": "revdist-circles/1", "pairs": [{"a": {"center": [1e155, 0, 0], "normal": [0, 0, 1],
+                          "radius": 1}, "b": {"center": [-1e155, 0, 0], "normal": [0, 1, 0], "radius": 1}}]})");
+  expect_one_line_error(run("circles " + circles + " --json"), "beyond +-1e100");
+  // Motions whose poses overflow: null brackets or pairs silently dropped before.
+  const std::string ball = R"([{"arc": [[0, -1], [1, 0], [0, 1]]}])";
+  auto moving = [&](const std::string& motion) {
+    return audit::write("motion.json", R"({"format": "revdist/1", "solids": {"s": {"profile": )" + ball +
+                                           R"(}}, "instances": [{"name": "a", "solid": "s", "motion": )" + motion +
+                                           R"(}, {"name": "b", "solid": "s", "translation": [3, 0, 0]}]})");
+  };
+  expect_one_line_error(run("scene " + moving(R"({"spin": [1e160, 0, 0]})") + " --frames 2"), "spin");
+  expect_one_line_error(run("scene " + moving(R"({"wave": {"amplitude": [0, 0, 1], "period": 5e-324}})") + " --frames 3"),
+                        "period");
+  expect_one_line_error(run("scene " + moving(R"({"velocity": [1e99, 0, 0]})") + " --frames 100"),
+                        "leaves the supported range");
+  const CommandRun ok = run("scene " + moving(R"({"velocity": [1e99, 0, 0]})") + " --frames 5 --json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  const std::string two = src("cases/distance/two_spheres.json");
+  expect_one_line_error(run("scene " + two + " --within nan"), "--within");
+  expect_one_line_error(run("scene " + two + " --nearest ''"), "--nearest");
+  expect_one_line_error(run("scene " + two + " --frames 10000000"), "--frames");
+  // Usage errors are one line too (CLI11 added "Run with --help ...").
+  expect_one_line_error(run("distance " + two + " --eps abc"), "--eps");
+  expect_one_line_error(run("stress --family circle_random --n 99999999999999999999"), "--n");
+  // Unicode line breaks in names are escaped, long echoes cut.
+  const std::string names = audit::write(
+      "names.json", R"({"format": "revdist/1", "solids": {"s": {"profile": )" + ball +
+                        R"(}}, "instances": [{"name": "a", "solid": "s"}], "queries": [["a", "b\u2028Z\u0085Q"]]})");
+  expect_one_line_error(run("distance " + names), "b\\u2028Z\\u0085Q");
+  // Stress shards: negative counts, fractional n, shard 5 of 2; devices refused.
+  const CommandRun shard = run("stress --family circle_random --n 2 --json");
+  ASSERT_EQ(shard.status, 0) << shard.err;
+  std::string bad = shard.out;
+  const std::size_t at = bad.find("\"violations\": 0");
+  ASSERT_NE(at, std::string::npos);
+  bad.replace(at, 15, "\"violations\": -5");
+  expect_one_line_error(run("stress --merge " + audit::write("shard.json", bad)), "violations must be an integer");
+  expect_one_line_error(run("stress --merge /dev/zero"), "NUL byte");
+  for (const std::string& f : {circles, names}) std::remove(f.c_str());
+}
