@@ -114,6 +114,14 @@ MUTANTS = [
      "if ((x_in && in_b(x)) || (y_in && in_a(y))) return proven_overlap(shared);",
      "if (x_in || y_in) return proven_overlap(x_in ? x : y);",
      "warm start: a previous overlap taken as proven without testing its point against the other solid"),
+    ("retry_without_proof", "fast/solid_distance.cpp",
+     "proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);",
+     "proven = true, local = cut2, evals = 0;",
+     "the second local proof (after the descent) settles its pair at the lowered cut without proving it"),
+    ("descent_points_unmapped", "fast/solid_distance.cpp",
+     "if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));",
+     "if (d - fa.eps - fb.eps < ub) offer(x, y);",
+     "the descent's pair (points of the fits' patches, up to eps off the true surfaces) offered as an upper bound"),
 ]
 
 
