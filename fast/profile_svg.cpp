@@ -45,24 +45,47 @@ struct View {
   std::string pt(const Vec2& p) const { return num(x(p)) + "," + num(y(p)); }
 };
 
+// Points of a polyline, a point repeating the one before (as printed) left out.
+struct Points {
+  std::string text, last;
+  void add(const std::string& p) {
+    if (p == last) return;
+    text += p + " ";
+    last = p;
+  }
+};
+
+// About one sample per pixel of length, at most kSamplesPerArc (a profile of
+// 100,000 tiny pieces wrote a 664 MB SVG at a fixed count).
 std::string arc_points(const View& v, const Arc2& a) {
-  std::string pts;
-  for (int i = 0; i <= kSamplesPerArc; ++i) pts += v.pt(a.point(a.length * i / kSamplesPerArc)) + " ";
-  return pts;
+  const int n = std::clamp(static_cast<int>(std::ceil(a.length * v.s)), 1, kSamplesPerArc);
+  Points pts;
+  for (int i = 0; i <= n; ++i) pts.add(v.pt(a.point(a.length * i / n)));
+  return pts.text;
 }
 
 }  // namespace
 
 std::string profile_svg(const std::string& title, const Profile& profile, const BiarcTree& tree) {
-  // Dense samples of the input curve, for the picture and its bounding box.
+  // Samples of the input curve, for the picture and its bounding box: about
+  // one per pixel of the piece's control polygon (the curve is no longer), at
+  // the scale of the control points' box (the drawing's is no coarser), at
+  // most kSamplesPerPiece.
+  Vec2 lo = profile.pieces.empty() ? Vec2::Zero() : profile.pieces[0].points[0], hi = lo;
+  for (const Piece& piece : profile.pieces)
+    for (const Vec2& q : piece.points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const double s0 = kCanvas / std::max({hi.x() - std::min(lo.x(), 0.0), hi.y() - lo.y(), 1e-300});
   std::vector<std::vector<Vec2>> curves;
   double rmin = 0.0, rmax = 0.0, zmin = 0.0, zmax = 0.0;
   bool first = true;
   for (const Piece& piece : profile.pieces) {
     const auto [u0, u1] = piece_domain(piece);
+    double len = 0;
+    for (std::size_t i = 1; i < piece.points.size(); ++i) len += (piece.points[i] - piece.points[i - 1]).norm();
+    const int n = std::clamp(static_cast<int>(std::ceil(len * s0)), 1, kSamplesPerPiece);
     std::vector<Vec2> c;
-    for (int i = 0; i <= kSamplesPerPiece; ++i) {
-      const Vec2 p = piece_point(piece, u0 + (u1 - u0) * i / kSamplesPerPiece);
+    for (int i = 0; i <= n; ++i) {
+      const Vec2 p = piece_point(piece, u0 + (u1 - u0) * i / n);
       c.push_back(p);
       if (first) {
         rmin = rmax = p.x();
@@ -120,9 +143,9 @@ std::string profile_svg(const std::string& title, const Profile& profile, const 
   // The input curve.
   svg += "<g fill=\"none\" stroke=\"black\" stroke-width=\"0.8\">\n";
   for (const auto& c : curves) {
-    std::string pts;
-    for (const Vec2& p : c) pts += v.pt(p) + " ";
-    svg += "<polyline points=\"" + pts + "\"/>\n";
+    Points pts;
+    for (const Vec2& p : c) pts.add(v.pt(p));
+    svg += "<polyline points=\"" + pts.text + "\"/>\n";
   }
   svg += "</g>\n";
   // The arcs, alternating colours (both arcs of one biarc share a hue, lighter second).

@@ -67,7 +67,7 @@ TEST(HostileCli, EndlessOrHugeOrBinaryInputIsRefused) {
 }
 
 TEST(HostileCli, FullStdoutExitsOne) {
-  for (const std::string cmd : {"distance " + src("cases/distance/two_spheres.json"),
+  for (const std::string& cmd : {"distance " + src("cases/distance/two_spheres.json"),
                                 "distance " + src("cases/distance/two_spheres.json") + " --json",
                                 "fit " + src("cases/models/pawn.json") + " --eps 1e-3"}) {
     const CommandRun r = run(cmd + " >/dev/full");
@@ -313,4 +313,33 @@ TEST(HostileCli, AuditNonFiniteAnswersAndSilentFlagsAreRefused) {
   expect_one_line_error(run("stress --merge " + audit::write("shard.json", bad)), "violations must be an integer");
   expect_one_line_error(run("stress --merge /dev/zero"), "NUL byte");
   for (const std::string& f : {circles, names}) std::remove(f.c_str());
+}
+
+// A profile of 20,000 tiny pieces: fit --svg wrote 133 MB (400 samples a piece
+// and 32 an arc, most of them the same pixel; 664 MB and 41 s at 100,000
+// pieces). About one sample a pixel now.
+TEST(HostileCli, SvgOfManyTinyPiecesStaysSmall) {
+  std::string profile = "[";
+  const int n = 20000;
+  double r0 = 0, z0 = -1;
+  for (int i = 1; i <= n; ++i) {
+    const double t = M_PI * i / n;
+    const double r = i == n ? 0.0 : std::sin(t), z = i == n ? 1.0 : -std::cos(t);
+    char piece[128];
+    std::snprintf(piece, sizeof piece, "%s{\"line\": [[%.17g, %.17g], [%.17g, %.17g]]}", i > 1 ? ", " : "", r0, z0, r, z);
+    profile += piece;
+    r0 = r, z0 = z;
+  }
+  profile += "]";
+  const std::string c = audit::write("tiny.json", audit::two_of(profile));
+  const std::string dir = temp_path("svg_tiny");
+  const CommandRun r = run("fit " + c + " --svg " + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::uintmax_t bytes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) bytes += std::filesystem::file_size(e.path());
+  std::printf("fit --svg of %d pieces: %ju bytes\n", n, bytes);
+  EXPECT_GT(bytes, 100000u);
+  EXPECT_LT(bytes, 20000000u);
+  std::filesystem::remove_all(dir);
+  std::remove(c.c_str());
 }
