@@ -75,7 +75,7 @@ void run(const Options& o) {
     const InstanceMotion& m = ins.motion;
     const double reach = ins.pose.translation.norm() + F * m.velocity.norm() + 0.5 * F * F * m.acceleration.norm() +
                          2 * m.wave_amplitude.norm();
-    if (!(reach <= 1e100))
+    if (!(reach <= kMaxMagnitude))
       throw InputError(o.file + ": instance " + quote(ins.name) + ": its motion leaves the supported range +-1e100 by frame " +
                        std::to_string(o.frames - 1));
   }

@@ -18,8 +18,8 @@
 #include "compare/thread_clock.h"
 #include "core/case_io.h"
 #include "core/case_scale.h"
-#include "core/profile_check.h"
 #include "core/input_error.h"
+#include "core/json_util.h"
 #include "exact/solid_distance_exact.h"
 #include "fast/biarc_tree.h"
 #include "fast/solid_distance.h"
@@ -491,14 +491,6 @@ BenchInput case_bench_input(const std::string& case_file) {
   return in;
 }
 
-namespace {
-std::string fmt_g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
-}  // namespace
-
 void check_bench(const BenchInput& input, const BenchOptions& options) {
   if (options.eps.empty()) throw InputError("--eps: at least one value");
   for (double e : options.eps)
@@ -510,23 +502,11 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   for (const auto& s : input.statics) all.push_back(&s);
   for (const auto& s : input.deformables) all.push_back(&s);
   for (const BenchInput::Solid* s : all) {
-    double extent = 0;
-    for (const Profile& p : s->def.keyframes) {
-      extent = std::max(extent, profile_size(p));
-      for (const Piece& piece : p.pieces)
-        for (const Vec2& q : piece.points) extent = std::max({extent, std::abs(q.x()), std::abs(q.y())});
-    }
+    const std::string who = input.source + ": solid " + quote(s->name);
     for (double e : options.eps) {
-      if (e < kMinRelativeEps * extent)
-        throw InputError(input.source + ": solid \"" + s->name + "\": --eps " + fmt_g(e) +
-                         " is below the smallest meaningful value " + fmt_g(kMinRelativeEps * extent) + " (" +
-                         fmt_g(kMinRelativeEps) + " of its extent; finer fits are lost in rounding)");
+      require_resolvable_eps(e, solid_extent(s->def), who);
       if (options.fcl)
-        for (const Profile& p : s->def.keyframes)
-          if (mesh_triangles(p, e) < 0)
-            throw InputError(input.source + ": solid \"" + s->name + "\": its FCL mesh at --eps " + fmt_g(e) +
-                             " would exceed " + std::to_string(kMaxMeshTriangles) +
-                             " triangles (~2 GB); use a larger --eps or --no-fcl");
+        for (const Profile& p : s->def.keyframes) require_mesh_within_limit(p, e, who, "use a larger --eps or --no-fcl");
     }
   }
 }

@@ -18,7 +18,7 @@
 #include "compare/svg_plot.h"
 #include "core/case_io.h"
 #include "core/case_scale.h"
-#include "core/input_error.h"
+#include "core/json_util.h"
 #include "exact/solid_distance_exact.h"
 #include "fast/case_model.h"
 
@@ -255,24 +255,17 @@ void make_plots(const std::vector<Row>& rows, const CompareOptions& o, std::map<
 }  // namespace
 
 void check_compare(const std::vector<std::string>& cases, const CompareOptions& o) {
-  auto g = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.3g", v);
-    return std::string(b);
-  };
   for (const std::string& file : cases) {
     const Case c = read_case(file);
     const CaseScale s = case_scale(c);
     std::vector<bool> used(c.instances.size(), false);
     for (const auto& [ia, ib] : c.queries) used[ia] = used[ib] = true;
     for (double e : o.eps) {
-      if (e < min_eps(s))
-        throw InputError(file + ": --eps " + g(e) + " is below the smallest meaningful value " + g(min_eps(s)) +
-                         " for this case (" + g(kMinRelativeEps) + " of its largest solid extent; finer fits are lost in rounding)");
+      require_resolvable_eps(e, s.extent, file);
       for (std::size_t i = 0; i < c.instances.size(); ++i)
-        if (used[i] && mesh_triangles(profile_at(c.solids[c.instances[i].solid], c.instances[i].time), e) < 0)
-          throw InputError(file + ": instance \"" + c.instances[i].name + "\": its FCL mesh at --eps " + g(e) +
-                           " would exceed " + std::to_string(kMaxMeshTriangles) + " triangles (~2 GB); use a larger --eps");
+        if (used[i])
+          require_mesh_within_limit(profile_at(c.solids[c.instances[i].solid], c.instances[i].time), e,
+                                    file + ": instance " + quote(c.instances[i].name), "use a larger --eps");
     }
   }
 }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/curve_eval.h"
+#include "core/input_error.h"
 
 namespace revdist {
 
@@ -108,6 +109,14 @@ fcl::Transform3d transform(const Mat3& R, const Vec3& t) {
 long mesh_triangles(const Profile& profile, double eps) {
   MeshPlan plan;
   return plan_mesh(profile, eps, kMaxMeshTriangles, &plan) ? plan.triangles : -1;
+}
+
+void require_mesh_within_limit(const Profile& profile, double eps, const std::string& who, const std::string& hint) {
+  if (mesh_triangles(profile, eps) >= 0) return;
+  char e[32];
+  std::snprintf(e, sizeof e, "%.3g", eps);
+  throw InputError(who + ": its FCL mesh at --eps " + e + " would exceed " + std::to_string(kMaxMeshTriangles) +
+                   " triangles (~2 GB); " + hint);
 }
 
 SolidMesh mesh_solid(const Profile& profile, double eps) {

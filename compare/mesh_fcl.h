@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/profile.h"
@@ -38,6 +39,9 @@ constexpr long kMaxMeshTriangles = 4000000;
 // The triangles mesh_solid(profile, eps) would make, -1 beyond kMaxMeshTriangles
 // (found without building the mesh; bounded work however small eps is).
 long mesh_triangles(const Profile& profile, double eps);
+// InputError naming `who` (and ending with `hint`) when that mesh would exceed
+// kMaxMeshTriangles: compare and bench refuse before any work.
+void require_mesh_within_limit(const Profile& profile, double eps, const std::string& who, const std::string& hint);
 
 // An FCL OBBRSS bounding-volume hierarchy of a mesh (opaque: FCL stays in the .cpp).
 class FclMesh;

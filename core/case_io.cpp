@@ -26,10 +26,8 @@ std::string fmt(double v) {
   return buf;
 }
 
-// The range of numbers the engines handle with their rounding allowances intact: squares
-// and products of a few lengths must neither overflow nor underflow, and a profile's join
-// tolerance (1e-9 of its size) must stay above the rounding of its coordinates.
-constexpr double kMaxMagnitude = 1e100;
+// Besides kMaxMagnitude (core/json_util.h): a profile's join tolerance (1e-9 of its
+// size) must stay above the rounding of its coordinates.
 constexpr double kMinProfileSize = 1e-100;
 constexpr double kMaxOffsetRatio = 1e6;    // largest |coordinate| / profile size
 constexpr double kMaxWeightRatio = 1e6;    // largest / smallest weight within one piece

@@ -3,23 +3,42 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
+#include "core/input_error.h"
 #include "core/profile_check.h"
 
 namespace revdist {
+
+double solid_extent(const SolidDef& s) {
+  double extent = 0.0;
+  for (const Profile& p : s.keyframes) {
+    extent = std::max(extent, profile_size(p));
+    for (const Piece& piece : p.pieces)
+      for (const Vec2& q : piece.points) extent = std::max({extent, std::abs(q.x()), std::abs(q.y())});
+  }
+  return extent;
+}
+
+void require_resolvable_eps(double eps, double extent, const std::string& who) {
+  if (eps >= kMinRelativeEps * extent) return;
+  auto g = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", v);
+    return std::string(b);
+  };
+  throw InputError(who + ": --eps " + g(eps) + " is below the smallest meaningful value " +
+                   g(kMinRelativeEps * extent) + " (" + g(kMinRelativeEps) + " of the extent " + g(extent) +
+                   "; finer fits are lost in rounding)");
+}
 
 CaseScale case_scale(const Case& c) {
   CaseScale s;
   std::vector<double> extent(c.solids.size(), 0.0);
   for (std::size_t i = 0; i < c.solids.size(); ++i) {
-    for (const Profile& p : c.solids[i].keyframes) {
-      const double size = profile_size(p);
-      s.size = std::max(s.size, size);
-      extent[i] = std::max(extent[i], size);
-      for (const Piece& piece : p.pieces)
-        for (const Vec2& q : piece.points) extent[i] = std::max({extent[i], std::abs(q.x()), std::abs(q.y())});
-    }
+    for (const Profile& p : c.solids[i].keyframes) s.size = std::max(s.size, profile_size(p));
+    extent[i] = solid_extent(c.solids[i]);
     s.extent = std::max(s.extent, extent[i]);
   }
   std::vector<bool> used(c.instances.size(), false);

@@ -2,6 +2,8 @@
 // 5, 6): eps and tol are absolute lengths, but below a fixed fraction of the model's
 // coordinates they are lost in double rounding, and the work to chase them is unbounded.
 #pragma once
+#include <string>
+
 #include "core/profile.h"
 
 namespace revdist {
@@ -13,6 +15,9 @@ struct CaseScale {
 };
 
 CaseScale case_scale(const Case& c);
+// One solid's extent: the largest of its profiles' sizes and |coordinates| over
+// every keyframe (CaseScale::extent is the largest over the solids).
+double solid_extent(const SolidDef& s);
 
 // Fits finer than this are below what the spiral split and the lens proof can resolve in
 // doubles: measured on the paper models (size ~1.6), eps = 3e-14 still builds and
@@ -24,6 +29,8 @@ constexpr double kMinRelativeEps = 1e-12;
 constexpr double kMinRelativeTol = 2e-13;
 
 inline double min_eps(const CaseScale& s) { return kMinRelativeEps * s.extent; }
+// InputError naming `who` when eps < kMinRelativeEps * extent (compare, bench).
+void require_resolvable_eps(double eps, double extent, const std::string& who);
 inline double min_tol(const CaseScale& s) { return kMinRelativeTol * s.query_extent; }
 
 // The unit that scales the default eps and tol: 1 for models whose largest profile size

@@ -16,9 +16,8 @@ Circle3 read_circle(const Json& j, const JsonWhere& where) {
   if (c.normal.squaredNorm() == 0.0 && c.normal == Vec3::Zero())
     (where / "normal").fail("the normal is the zero vector");
   if (c.radius < 0.0) (where / "radius").fail("negative radius");
-  // The range of case files (core/case_io.cpp): squares of coordinates beyond it
-  // overflow (centres 1e155 apart made the fast engine answer "infinitely many").
-  constexpr double kMaxMagnitude = 1e100;
+  // Within kMaxMagnitude, as case files (centres 1e155 apart made the fast
+  // engine answer "infinitely many").
   auto within = [&](const Vec3& v, const char* what) {
     if (!(v.cwiseAbs().maxCoeff() <= kMaxMagnitude)) (where / what).fail("a coordinate beyond +-1e100");
   };

@@ -17,6 +17,11 @@ Json read_json_file(const std::string& path);
 // The same checks on text already in memory (path only names it in messages).
 Json parse_json_text(const std::string& text, const std::string& path);
 
+// The range of coordinates, rates and radii every input file keeps (case and
+// circle files): squares and products of a few lengths must neither overflow
+// nor underflow for the engines' rounding allowances to hold.
+constexpr double kMaxMagnitude = 1e100;
+
 // s in double quotes with JSON escapes (control characters, quotes, backslashes), cut
 // after 80 bytes: a name from the input always prints as one readable line.
 std::string quote(const std::string& s);

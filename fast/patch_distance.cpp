@@ -478,14 +478,12 @@ struct BoxedPatch {
   }
 };
 
-}  // namespace
-
-namespace {
 // patch_point with P's axis frame (axis_frame) given.
 Vec3 framed_point(const Patch& P, const Vec3& e1, const Vec3& e2, double u, double th) {
   const Vec2 q = meridian_point(P, u);
   return P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
 }
+
 }  // namespace
 
 Vec3 patch_point(const Patch& P, double u, double th) {
@@ -522,13 +520,12 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
 }
 
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
-  Vec3 e1, e2, yy;
-  axis_frame(P, &e1, &e2);
-  auto f = [&](double u, double th) { return patch_nearest(Q, framed_point(P, e1, e2, u, th), &yy); };
+  const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
+  Vec3 yy;
+  auto f = [&](double u, double th) { return patch_nearest(Q, framed_point(P, bp.e1, bp.e2, u, th), &yy); };
   // Steps of the finite differences, in profile fraction and radians: small
   // against a patch, large against rounding (second differences lose
   // ~1e-16 / 1e-8 of the distance's scale, far below what a start needs).
-  const BoxedPatch bp(P);
   const double hu = 1e-4, ht = 1e-4;
   double u = std::clamp(start.x(), 0.0, 1.0), th = start.y();
   double fu = f(u, th);
@@ -569,7 +566,7 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
     }
     if (!moved || last) break;
   }
-  *x = framed_point(P, e1, e2, u, th);
+  *x = framed_point(P, bp.e1, bp.e2, u, th);
   return patch_nearest(Q, *x, y);
 }
 
@@ -590,10 +587,7 @@ bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const 
       *u = phi / P.sweep;
     }
   };
-  auto point = [&](double u, double th) {
-    const Vec2 q = meridian_point(P, u);
-    return Vec3(P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a);
-  };
+  auto point = [&](double u, double th) { return framed_point(P, e1, e2, u, th); };
   auto g = [&](const Vec3& x) { return patch_surface_function(Q, patch_local(Q, x)); };
   double u0, t0, u1, t1;
   params(lo, &u0, &t0);
