@@ -298,7 +298,17 @@ Generic solve_generic(const PairCoeffs& k) {
   }
   double fmax = 0;
   for (int i = 0; i < kSamples; ++i) fmax = std::max(fmax, fs[i]);
-  if (fmax - cur.f <= noise) {
+  // f's variation is at most 2 pi * max|f'| <= 4 pi sqrt(fmax) Rp (the
+  // distance to q is 1-Lipschitz, p's point moves at speed Rp). Where that is
+  // within the noise (a circle tiny against its distance: unit circles 1e20
+  // apart) every pair looks flat, and flatness proves nothing. No family can
+  // hide there: sigma scales the largest of the radii and the centre offset
+  // to about 1 and p has the larger radius, so a tiny Rp leaves the centres
+  // about 1 apart, where a torus around q carries no circle of p's size but
+  // its parallels (coaxial: named before the generic solve).
+  const double Rp = std::sqrt(k.x1 * k.x1 + k.y1 * k.y1 + k.z1 * k.z1);
+  const bool resolvable = 4 * kPi * std::sqrt(fmax) * Rp > 1e6 * noise;
+  if (resolvable && fmax - cur.f <= noise) {
     bool flat = true;
     for (int i = 0; i < 4 * kSamples && flat; ++i) {
       const double th = 2 * kPi * (i + 0.5) / (4 * kSamples);

@@ -306,6 +306,23 @@ TEST(CircleDistanceNamed, MeridianInsideTheTubeIsEquidistant) {
   EXPECT_EQ(circle3_circle3_distance(b, a).status, CircleCircleStatus::infinitely_many);
 }
 
+// Unit circles far apart: the distance varies along them by far less than its
+// rounding, so the samples all look equal, but the closest pair is unique
+// (only coaxial circles, named before the generic solve, form a family there).
+// Before the fix the engine answered infinitely_many from 1e20 apart on.
+TEST(CircleDistanceNamed, FarApartTinyCirclesAreNotAFamily) {
+  for (double far : {1e4, 1e8, 1e12, 1e16, 1e20, 1e30, 1e60}) {
+    const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0}, b{Vec3(far, 0, 0), Vec3::UnitY(), 1.0};
+    const auto r = circle3_circle3_distance(a, b);
+    EXPECT_EQ(r.status, CircleCircleStatus::ok) << far;
+    EXPECT_EQ(circle3_circle3_distance(b, a).status, CircleCircleStatus::ok) << far;
+    EXPECT_NEAR(r.distance, far - 2, 8 * kEps * far) << far;
+    // Coaxial at the same distance: a family at every scale.
+    const Circle3 c{Vec3(0, 0, far), Vec3::UnitZ(), 1.0};
+    EXPECT_EQ(circle3_circle3_distance(a, c).status, CircleCircleStatus::infinitely_many) << far;
+  }
+}
+
 TEST(CircleDistanceNamed, TinyAndHugeNormals) {
   const Circle3 a{Vec3::Zero(), Vec3(0, 0, 1e-300), 1.0}, b{Vec3(2, 0, 0), Vec3(1e300, 0, 0), 1.0};
   const Circle3 a1{Vec3::Zero(), Vec3::UnitZ(), 1.0}, b1{Vec3(2, 0, 0), Vec3::UnitX(), 1.0};
