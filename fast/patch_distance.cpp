@@ -720,11 +720,23 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // Boxes carry the cosines and sines of their middle angles (azimuth, and
   // the arc's angle at the middle profile fraction), updated by angle
   // addition with the half-widths of each level, computed once a level.
+  // The azimuth's halves are the same for every call (the sectors are fixed):
+  // a table built once.
   struct Box { double um, du, cu, su, tm, dt, ct, st; int lu, lt; };
   struct HalfAngle { double c, s; };
-  HalfAngle hu[64], ht[64];  // level k: half of the level's half-width
-  int nu = 0, nt = 0;
   constexpr int kSectors = 8;
+  struct AzimuthHalves {
+    HalfAngle h[64];
+    AzimuthHalves() {
+      for (int k = 0; k < 64; ++k) {
+        const double a = std::ldexp(M_PI / kSectors, -(k + 1));
+        h[k] = {std::cos(a), std::sin(a)};
+      }
+    }
+  };
+  static const AzimuthHalves ht;
+  HalfAngle hu[64];  // level k: half of the level's half-width
+  int nu = 0;
   auto half_angle = [](HalfAngle* table, int* filled, int level, double half0) {
     while (*filled <= level) {
       const double h = std::ldexp(half0, -(*filled + 1));
@@ -773,12 +785,19 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     // |n . q - off| zero. (A signed form, with P's own curvature and the
     // gradient's movement over the ball, proves smaller gaps in fewer boxes
     // but cost more than it saved on the bench's motion: +4 % instructions.)
-    auto piece = [&](double f, const Vec2& grad, double lam) {
+    // (grad_lam(&grad, &lam) supplies them, only for a piece the first-order
+    // bound leaves below the cut: most pieces of most boxes clear without.)
+    auto piece = [&](double f, auto&& grad_lam) {
       double bound = f - r;
-      if (bound - margin < cut && bx.smooth && !std::isnan(lam)) {
-        const Vec3 g = grad.x() * erq + grad.y() * Q.a;
-        bound = std::max(bound, f - std::abs(g.dot(bx.xu)) * du - std::abs(g.dot(bx.xt)) * dt +
-                                    0.5 * lam * bx.a * bx.a - bx.rest);
+      if (bound - margin < cut && bx.smooth) {
+        Vec2 grad;
+        double lam;
+        grad_lam(&grad, &lam);
+        if (!std::isnan(lam)) {
+          const Vec3 g = grad.x() * erq + grad.y() * Q.a;
+          bound = std::max(bound, f - std::abs(g.dot(bx.xu)) * du - std::abs(g.dot(bx.xt)) * dt +
+                                      0.5 * lam * bx.a * bx.a - bx.rest);
+        }
       }
       lb = std::min(lb, bound - margin);
     };
@@ -794,8 +813,11 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       const double f = v.norm();
       truth = std::min(truth, f);
       // A pole (pr = 0) is a point: smooth wherever f > 0.
-      const bool smooth = f - r > 0 && (pe.x() <= 0 || rho_min > 0);
-      piece(f, f > 0 ? Vec2(v / f) : Vec2(1, 0), smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan);
+      piece(f, [&](Vec2* grad, double* lam) {
+        const bool smooth = f - r > 0 && (pe.x() <= 0 || rho_min > 0);
+        *grad = f > 0 ? Vec2(v / f) : Vec2(1, 0);
+        *lam = smooth ? (pe.x() <= 0 ? 0.0 : azimuthal(pe.x(), f - r)) : nan;
+      });
     }
     if (Q.straight) {
       if (seg_len > 0) {
@@ -803,9 +825,12 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
         if (t >= 0 && t <= seg_len) truth = std::min(truth, f);
         if (t >= -r && t <= seg_len + r) {
           // Hessian sign(s) n_r / rho about the axis.
-          const double nr = s >= 0 ? Q.n.x() : -Q.n.x();
-          const bool smooth = nr >= 0 || rho_min > 0;
-          piece(f, s >= 0 ? Q.n : Vec2(-Q.n), smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan);
+          piece(f, [&](Vec2* grad, double* lam) {
+            const double nr = s >= 0 ? Q.n.x() : -Q.n.x();
+            const bool smooth = nr >= 0 || rho_min > 0;
+            *grad = s >= 0 ? Q.n : Vec2(-Q.n);
+            *lam = smooth ? (nr >= 0 ? 0.0 : nr / rho_min) : nan;
+          });
         }
       }
     } else {
@@ -823,14 +848,16 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
         // Outside the tube f = D - rho: D's Hessian (a distance to a point of
         // the half-plane). Inside f = rho - D: minus it, at least -1/D in the
         // plane and -|D_rho| / rho about the axis.
-        const double D_min = D - r;
-        const bool smooth = D_min > 0 && (Q.c.x() == 0 || rho_min > 0);
-        double lam = nan;
-        if (smooth) {
-          if (s > 0) lam = Q.c.x() == 0 ? 0.0 : azimuthal(Q.c.x(), D_min);
-          else lam = -1.0 / D_min - (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
-        }
-        piece(f, D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0), lam);
+        piece(f, [&](Vec2* grad, double* lam) {
+          const double D_min = D - r;
+          const bool smooth = D_min > 0 && (Q.c.x() == 0 || rho_min > 0);
+          *lam = nan;
+          if (smooth) {
+            if (s > 0) *lam = Q.c.x() == 0 ? 0.0 : azimuthal(Q.c.x(), D_min);
+            else *lam = -1.0 / D_min - (Q.c.x() == 0 ? 0.0 : 1.0 / rho_min);
+          }
+          *grad = D > 0 ? Vec2((s >= 0 ? 1.0 : -1.0) * v / D) : Vec2(1, 0);
+        });
       }
     }
     if (truth < cut) {  // a point of P is closer: not provable
@@ -852,7 +879,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
                      b.tm, dt, b.ct, b.st, b.lu + 1, b.lt};
       }
     } else {
-      const HalfAngle h = half_angle(ht, &nt, b.lt, M_PI / kSectors);
+      const HalfAngle h = ht.h[b.lt];
       for (double sgn : {-1.0, 1.0}) {
         open[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, b.ct * h.c - sgn * b.st * h.s,
                      b.st * h.c + sgn * b.ct * h.s, b.lu, b.lt + 1};
