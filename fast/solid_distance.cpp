@@ -315,14 +315,20 @@ struct NeighbourHash {
     for (std::uint64_t v : {bits(k.other_u0), bits(k.other_u1), static_cast<std::uint64_t>(k.other_piece),
                             static_cast<std::uint64_t>(k.piece), static_cast<std::uint64_t>(k.dir * 2 + k.mine_is_a)})
       h = (h ^ v) * 0x9e3779b97f4a7c15ull;
-    return static_cast<std::size_t>(h ^ (h >> 29));
+    // The table takes the low bits, and a product's low bits depend only on
+    // its factors' low bits, which are 0 in the doubles of dyadic span ends
+    // (0.5, 0.375, ...): the finaliser of MurmurHash3 brings the high bits down.
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    return static_cast<std::size_t>(h);
   }
 };
 // A flat hash table from neighbour keys to indices (the first insert of a key
 // wins), open addressing with linear probing: no allocation per insert.
 class NeighbourTable {
  public:
-  NeighbourTable() : slots_(64) {}
+  NeighbourTable() : slots_(128) {}
   void emplace(const NeighbourKey& k, std::size_t v) {
     if (4 * (used_ + 1) > 3 * slots_.size()) grow();
     Slot& s = slots_[index(k)];
