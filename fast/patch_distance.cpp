@@ -707,6 +707,9 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // of Q's half-plane, plus 1/rho about Q's axis; |n_r|/rho for the line), which
   // gives the second-order bound of patches_apart.
   const BoxedPatch bp(P);
+  Vec2 disk_c;
+  double disk_r;
+  patch_disk(Q, &disk_c, &disk_r);
   // Q's window: the arc's (its Gauss window, single here), or the segment.
   double seg_len = 0;
   Vec2 dir(1, 0);
@@ -770,6 +773,13 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     const double r = prof + azi;  // every point of the box is within r of x
     Vec3 erq;
     const Vec2 qq = patch_local(Q, bx.x, &erq);
+    // Q lies in its bounding disk (in its meridian half-plane): a box whose
+    // ball stays the cut away from that disk clears without Q's pieces.
+    const double to_disk = (qq - disk_c).norm() - disk_r - r - margin;
+    if (to_disk >= cut) {
+      least = std::min(least, to_disk);
+      continue;
+    }
     const double rho_min = qq.x() - r;  // distance to Q's axis over the ball
     double lb = std::numeric_limits<double>::infinity();
     double truth = lb;  // the distance from x itself to Q's patch

@@ -85,7 +85,8 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 // direction from its centre (or its projection) falls in the arc (segment),
 // else to the nearer end. The boxes of the smaller patch (profile range x
 // azimuth range, from 8 sectors) are bounded by that function at the box's
-// centre less a first- or second-order remainder (as in patches_apart), and
+// centre less a first- or second-order remainder (as in patches_apart), or,
+// for a box whose ball stays clear of Q's bounding disk, by that disk, and
 // split until every box clears `cut` or the budget is spent. True when every
 // box clears: *lower is then the least box bound (>= cut), a lower bound on
 // the patches' distance. False ("not proven") when a box's centre is closer
