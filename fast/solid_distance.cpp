@@ -184,8 +184,11 @@ struct Solid {
       const double h = der[1].squaredNorm() + r.dot(der[2]);
       if (!(h > 0)) break;
       const double un = std::clamp(u - g / h, f.u0, f.u1);
-      if (un == u) break;
+      const double step = std::abs(un - u);
       u = un;
+      // Newton's error is about the square of the last step: below 1e-10 of
+      // the span it is far below rounding (any u gives a genuine point).
+      if (!(step > 1e-10 * (f.u1 - f.u0))) break;
     }
     piece_derivatives(piece, u, 0, der);
     if ((der[0] - q).squaredNorm() < (best - q).squaredNorm()) best = der[0];
