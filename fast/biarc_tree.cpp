@@ -30,7 +30,7 @@ struct Builder {
   BiarcTree& tree;
   bool lazy = false;  // stop below a proven inner node: mark it pending instead
   std::int32_t base_nodes = 0, base_fits = 0, base_pending = 0;
-  BuildStats st;
+  BuildStats st{};
 
   BiarcNode& node_at(std::int32_t i) { return tree.nodes[i - base_nodes]; }
 
