@@ -709,6 +709,18 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
               st.local_boxes += evals;
+            } else if (cut() > 0 && d > fa.eps + fb.eps + round) {
+              // The patches hold a pair at d <= cut2: no bound on their
+              // distance, less the fit errors, can retire this leaf pair
+              // (its fit errors exceed what the bracket has left), so it will
+              // be refined, and the enumeration would only confirm that.
+              // Patches that may cross (d within the fit errors) still go on
+              // to it for its overlap probes. Most pairs of a query whose tol
+              // is below its fits' errors end here.
+              ++st.local_hopeless;
+              lb_pair = std::min(lb_pair, std::max(disk, 0.0));
+              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
+              continue;
             }
           }
           if (proven) {

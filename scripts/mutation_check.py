@@ -122,6 +122,10 @@ MUTANTS = [
      "if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));",
      "if (d - fa.eps - fb.eps < ub) offer(x, y);",
      "the descent's pair (points of the fits' patches, up to eps off the true surfaces) offered as an upper bound"),
+    ("hopeless_pair_bound_from_witness", "fast/solid_distance.cpp",
+     "lb_pair = std::min(lb_pair, std::max(disk, 0.0));\n              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));\n              continue;",
+     "lb_pair = std::min(lb_pair, d);\n              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));\n              continue;",
+     "a pair left to refinement takes its descended pair's distance (an upper bound, fit errors not taken off) as its lower bound"),
 ]
 
 
