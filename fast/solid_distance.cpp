@@ -631,6 +631,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       lb_pair = std::min(lb_pair, fits - fa.eps - fb.eps - round);
       fit_lb = std::min(fit_lb, fits);
     };
+    // An arc pair left open (for refinement, or crossing): its patches' bound
+    // `fits` (the quick look's), or 0, as what it keeps.
+    auto leave_open = [&](double fits) {
+      lb_pair = std::min(lb_pair, std::max(fits - fa.eps - fb.eps - round, 0.0));
+      fit_lb = std::min(fit_lb, std::max(fits, 0.0));
+    };
     // The arcs of one fit join G1: only the fit's own ends are boundaries
     // (patch_pair_distance's `outer`), so the fit pair is one problem; ends
     // covered by a neighbour's pair are not boundaries to search either.
@@ -717,9 +723,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
               // Patches that may cross (d within the fit errors) still go on
               // to it for its overlap probes. Most pairs of a query whose tol
               // is below its fits' errors end here.
-              ++st.local_hopeless;
-              lb_pair = std::min(lb_pair, std::max(disk, 0.0));
-              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
+              leave_open(quick.lower);
               continue;
             }
           }
@@ -753,8 +757,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           continue;
         }
         all_separated = false;
-        lb_pair = std::min(lb_pair, std::max(disk, 0.0));
-        fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));
+        leave_open(quick.lower);
         // The patches may cross: try to prove that the solids overlap, from
         // the patch points most inside the other solid, then the candidate
         // pair's points and, along their meridians, the input curve beyond

@@ -51,7 +51,6 @@ struct DistanceStats {
   long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h): the local proof's fallbacks
   long local_pairs = 0;  // patch pairs settled by the local proof (patches_at_least)
   long local_boxes = 0;  // boxes the local proof evaluated (settled or not)
-  long local_hopeless = 0;  // patch pairs left to refinement: a pair of their points is within the fit errors of the cut
   long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
   long refined = 0;      // parts created by refining fits below the tree leaves
   long nodes_built = 0;  // lazy trees: nodes this query built (0 for eager trees)

@@ -101,7 +101,7 @@ MUTANTS = [
      "const double r = prof + azi;  // every point", "const double r = 0.25 * (prof + azi);  // every point",
      "local proof: balls too small to hold their boxes (first-order bound too high)"),
     ("local_no_curvature_term", "fast/patch_distance.cpp",
-     "+\n                                    0.5 * lam * bx.a * bx.a - bx.rest);",
+     "+\n                                      0.5 * lam * bx.a * bx.a - bx.rest);",
      "- bx.rest);",
      "local proof: second-order bound without its curvature terms"),
     ("local_no_interior_piece", "fast/patch_distance.cpp",
@@ -123,7 +123,7 @@ MUTANTS = [
      "if (d - fa.eps - fb.eps < ub) offer(x, y);",
      "the descent's pair (points of the fits' patches, up to eps off the true surfaces) offered as an upper bound"),
     ("hopeless_pair_bound_from_witness", "fast/solid_distance.cpp",
-     "lb_pair = std::min(lb_pair, std::max(disk, 0.0));\n              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));\n              continue;",
+     "leave_open(quick.lower);\n              continue;",
      "lb_pair = std::min(lb_pair, d);\n              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));\n              continue;",
      "a pair left to refinement takes its descended pair's distance (an upper bound, fit errors not taken off) as its lower bound"),
 ]
