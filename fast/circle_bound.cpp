@@ -17,4 +17,28 @@ double circle3_circle3_lower_bound(const Circle3& a, const Circle3& b) {
   return CircleBoundAxes(a.normal / la, b.normal / lb)(a.center, a.radius, b.center, b.radius);
 }
 
+namespace {
+// The nearest point of circle c to x (any point of c when x is on its axis).
+Vec3 nearest_on(const Circle3& c, const Vec3& x) {
+  const Vec3 n = c.normal.normalized();
+  Vec3 v = x - c.center;
+  v -= n.dot(v) * n;
+  const double len = v.norm();
+  if (!(len > 0)) return c.center + c.radius * n.unitOrthogonal();
+  return c.center + (c.radius / len) * v;
+}
+}  // namespace
+
+double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec3& hint, int rounds, Vec3* pa_out,
+                                   Vec3* pb_out) {
+  Vec3 pa = nearest_on(a, hint), pb = nearest_on(b, pa);
+  for (int i = 1; i < rounds; ++i) {
+    pa = nearest_on(a, pb);
+    pb = nearest_on(b, pa);
+  }
+  if (pa_out) *pa_out = pa;
+  if (pb_out) *pb_out = pb;
+  return (pa - pb).norm();
+}
+
 }  // namespace revdist

@@ -19,6 +19,17 @@ namespace revdist {
 // caller's (a few ulps of the coordinates).
 double circle3_circle3_lower_bound(const Circle3& a, const Circle3& b);
 
+// An upper bound on dist(a, b): the distance between a point of a and a point
+// of b, found by alternating projection (the nearest point of a to the hint,
+// the nearest point of b to that, and so on for `rounds` rounds). Near the
+// circles' closest pair (a hint there: a query's witness) it is close to the
+// distance. The filter in front of circle3_circle3_distance where only an
+// answer at or above some threshold would be used: an upper bound below the
+// threshold proves that the iterative solve would not reach it.
+// The pair is returned in *pa, *pb when they are given.
+double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec3& hint, int rounds = 3,
+                                   Vec3* pa = nullptr, Vec3* pb = nullptr);
+
 // The same bound for circles whose normals are two fixed unit vectors na, nb
 // (the parts of two posed solids, all about their solids' axes): the sine of
 // the normals' angle is computed once, a pair costs three square roots.

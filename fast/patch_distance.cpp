@@ -383,22 +383,52 @@ double plane_bound(const Patch& F, const Patch& O) {
   return -std::numeric_limits<double>::infinity();
 }
 
-PatchQuick patch_pair_quick(const Patch& A, const Patch& B) {
+PatchQuick patch_pair_quick(const Patch& A, const Patch& B, const QuickGoal* goal) {
   PatchQuick q;
-  q.lower = patch_disk_bound(A, B);
+  q.lower = -std::numeric_limits<double>::infinity();
   if (A.straight && A.n.x() == 0) q.lower = std::max(q.lower, plane_bound(A, B));
   if (B.straight && B.n.x() == 0) q.lower = std::max(q.lower, plane_bound(B, A));
-  if (A.straight || B.straight) return q;
-  const Circle3Circle3Result m = circle3_circle3_distance(patch_major_circle(A), patch_major_circle(B));
+  Vec2 ca, cb;
+  double ra, rb;
+  patch_disk(A, &ca, &ra);
+  patch_disk(B, &cb, &rb);
+  const Circle3 da = patch_disk_circle(A, ca), db = patch_disk_circle(B, cb);
+  if (goal && (q.lower >= goal->need || circle3_circle3_upper_bound(da, db, goal->hint) - ra - rb < goal->need)) {
+    q.complete = false;
+    q.lower = std::max(q.lower, circle3_circle3_lower_bound(da, db) - ra - rb);
+  } else {
+    q.lower = std::max(q.lower, circle3_circle3_distance(da, db).distance - ra - rb);
+  }
+  if (A.straight || B.straight || (goal && q.lower >= goal->need)) return q;
+  const Circle3 ma = patch_major_circle(A), mb = patch_major_circle(B);
+  if (goal) {
+    // The major circles' solve matters when their gap can reach the goal, or
+    // when their closest pair may fall in both windows (the exact case). A
+    // pair of their points from the hint stands in for both: closer than the
+    // goal, with its tube points a chord or more outside either window, the
+    // solve is skipped. (The window test is a guess: at worst a pair the
+    // solve would have settled exactly goes on to the caller's proofs.)
+    Vec3 pa, pb;
+    const double d = circle3_circle3_upper_bound(ma, mb, goal->hint, 3, &pa, &pb);
+    if (d - A.rho - B.rho < goal->need) {
+      const Vec3 w = d > 0 ? Vec3((pb - pa) / d) : Vec3::Zero();
+      if (!patch_contains_local(A, patch_local(A, pa + A.rho * w), (A.p1 - A.p0).norm()) ||
+          !patch_contains_local(B, patch_local(B, pb - B.rho * w), (B.p1 - B.p0).norm())) {
+        q.complete = false;
+        return q;
+      }
+    }
+  }
+  const Circle3Circle3Result m = circle3_circle3_distance(ma, mb);
   const double gap = m.distance - A.rho - B.rho;
   q.lower = std::max(q.lower, gap);
   if (!(gap > 0)) return q;
   const Vec3 w = (m.point_b - m.point_a) / m.distance;
   const Vec3 x = m.point_a + A.rho * w, y = m.point_b - B.rho * w;
-  Vec3 ca, cb;
-  const double scale = std::max({patch_extent(A, &ca), patch_extent(B, &cb), m.distance});
+  Vec3 centre_a, centre_b;
+  const double scale = std::max({patch_extent(A, &centre_a), patch_extent(B, &centre_b), m.distance});
   const double tol = 1e-9 * scale + 64 * std::numeric_limits<double>::epsilon() *
-                                        std::max(ca.cwiseAbs().maxCoeff(), cb.cwiseAbs().maxCoeff());
+                                        std::max(centre_a.cwiseAbs().maxCoeff(), centre_b.cwiseAbs().maxCoeff());
   if (patch_contains_local(A, patch_local(A, x), tol) && patch_contains_local(B, patch_local(B, y), tol)) {
     q.exact = true;
     q.x = x;

@@ -133,12 +133,28 @@ double patch_disk_bound(const Patch& A, const Patch& B);
 // rho of its major circle) and, when the major circles' closest pair lands
 // inside both patches' ranges with the tubes apart, the exact distance (that
 // pair's points on the patches attain the bound).
+//
+// With a goal (the bound that would settle the pair for the caller, and a
+// point near where the patches are closest, such as a query's witness), the
+// look stops once its bound reaches the goal, and it skips the bounding tori's
+// iterative solve when a pair of points of their centre circles (alternating
+// projection from the hint) shows that it cannot reach the goal; the closed
+// form bound stands in for it. Likewise the major circles' solve, unless that
+// pair's tube points come within a chord of both patches (then the major
+// circles' closest pair may settle the pair exactly). `complete` says whether
+// every solve ran (else lower is weaker than the full look's, below the goal
+// all the same).
 struct PatchQuick {
   double lower = 0.0;
   bool exact = false;  // then lower is the distance, attained by (x, y)
+  bool complete = true;  // no solve skipped for the goal
   Vec3 x = Vec3::Zero(), y = Vec3::Zero();
 };
-PatchQuick patch_pair_quick(const Patch& A, const Patch& B);
+struct QuickGoal {
+  double need;  // a lower bound at or above it settles the pair
+  Vec3 hint;    // near the patches' closest points
+};
+PatchQuick patch_pair_quick(const Patch& A, const Patch& B, const QuickGoal* goal = nullptr);
 
 
 }  // namespace revdist

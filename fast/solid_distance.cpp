@@ -672,8 +672,11 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             continue;
           }
         }
-        // The cheap look next: most pairs end here.
-        const PatchQuick quick = patch_pair_quick(P, Q);
+        // The cheap look next: most pairs end here. Told what settles the
+        // pair and where the witness is, it skips the circle solves that
+        // provably cannot settle it (two thirds of them at eps 1e-5).
+        const QuickGoal goal{cut() + fa.eps + fb.eps + round, res.point_a};
+        const PatchQuick quick = patch_pair_quick(P, Q, &goal);
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
           ++st.quick_pairs;
@@ -748,7 +751,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
-        const PatchPairResult r = patch_pair_distance(P, Q, kernel_cut, quick.lower, outer);
+        // (The enumeration takes the full look's bound.)
+        const PatchPairResult r =
+            patch_pair_distance(P, Q, kernel_cut, quick.complete ? quick.lower : patch_pair_quick(P, Q).lower, outer);
         // The true points are within the fits' eps of the patch points: map
         // them (a Newton solve on the input curve) only when they may improve.
         if (r.found && r.upper - fa.eps - fb.eps < ub) offer(A.true_point(fa, r.x), B.true_point(fb, r.y));

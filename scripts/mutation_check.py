@@ -126,6 +126,10 @@ MUTANTS = [
      "leave_open(quick.lower);\n              continue;",
      "lb_pair = std::min(lb_pair, d);\n              fit_lb = std::min(fit_lb, std::max(quick.lower, 0.0));\n              continue;",
      "a pair left to refinement takes its descended pair's distance (an upper bound, fit errors not taken off) as its lower bound"),
+    ("quick_bound_from_upper_pair", "fast/patch_distance.cpp",
+     "q.lower = std::max(q.lower, circle3_circle3_lower_bound(da, db) - ra - rb);",
+     "q.lower = std::max(q.lower, circle3_circle3_upper_bound(da, db, goal->hint) - ra - rb);",
+     "the quick look's skipped solve takes the filter's pair of points (an upper bound) as the bounding tori's lower bound"),
 ]
 
 

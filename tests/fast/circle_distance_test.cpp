@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
 #include "tests/fast/circle_test_util.h"
 
@@ -237,6 +238,38 @@ TEST(CircleDistanceMetamorphic, SwapAgreesWithBothParameterisations) {
     }
   std::printf("[ swap     ] %d comparisons, worst |shortest binormal - distance| / scale = %.3g\n", compared, worst);
   EXPECT_GT(compared, 1000);
+}
+
+// circle3_circle3_upper_bound, the filter in front of the solve: a pair of
+// points of the circles, so never below the distance (to rounding) from any
+// hint, and the distance itself from a hint at the closest pair (each point of
+// a closest pair is the other circle's nearest point to the other).
+TEST(CircleUpperBound, NeverBelowTheDistanceAndExactFromTheClosestPair) {
+  Rng rng(test_seed() + 7);
+  int compared = 0, tight_from_far = 0;
+  for (const Family& fam : families())
+    for (int i = 0; i < 100; ++i) {
+      const Case k = fam.make(rng, i);
+      const auto ex = circle3_circle3_distance(k.a, k.b);
+      if (ex.status != CircleCircleStatus::ok) continue;
+      // Rounding: ulps of the coordinates (some families sit far from the origin).
+      const double scale = pair_scale(k.a, k.b);
+      const double coord = std::max({scale, k.a.center.cwiseAbs().maxCoeff(), k.b.center.cwiseAbs().maxCoeff()});
+      const double ulps = 64 * std::numeric_limits<double>::epsilon() * coord;
+      const Vec3 far = 0.5 * (k.a.center + k.b.center) + rng.box(2 * scale);
+      const double from_far = circle3_circle3_upper_bound(k.a, k.b, far);
+      EXPECT_GE(from_far, ex.distance - ulps) << fam.name << " #" << i;
+      if (from_far <= ex.distance + 1e-6 * scale) ++tight_from_far;
+      Vec3 pa, pb;
+      const double from_pair = circle3_circle3_upper_bound(k.a, k.b, ex.point_a, 3, &pa, &pb);
+      EXPECT_NEAR(from_pair, ex.distance, ulps) << fam.name << " #" << i;
+      EXPECT_NEAR((pa - pb).norm(), from_pair, ulps);
+      EXPECT_NEAR((pa - k.a.center).norm(), k.a.radius, ulps);
+      EXPECT_NEAR((pb - k.b.center).norm(), k.b.radius, ulps);
+      ++compared;
+    }
+  std::printf("[ upper    ] %d pairs, %d within 1e-6 of the distance from a random hint\n", compared, tight_from_far);
+  EXPECT_GT(compared, 500);
 }
 
 TEST(CircleDistanceMetamorphic, PowerOfTwoScaleIsExact) {

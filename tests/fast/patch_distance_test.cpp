@@ -502,6 +502,46 @@ TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
   EXPECT_GT(2 * at_min, separated);
 }
 
+// The quick look with a goal (the query's filter): it settles exactly the
+// pairs the full look settles (a lower bound at or above the goal), its bound
+// is never above the full look's nor the truth, and an exact answer is the
+// full look's. Not vacuous: some solves are skipped, from hints near the
+// closest pair and far from it.
+TEST_P(PatchVsBrute, QuickLookWithAGoalSettlesWhatTheFullLookSettles) {
+  const Kind k = GetParam();
+  std::mt19937_64 g = kind_rng(k, 51);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int looks = 0, skipped = 0, settled = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch &A = t.p.A, &B = t.p.B;
+    const PatchQuick full = patch_pair_quick(A, B);
+    if (!std::isfinite(full.lower)) continue;
+    const double ulps = 1024 * kEps * std::max(t.coord, 8.0);
+    const double truth = t.r.separated && !t.r.degenerate ? t.r.upper : INFINITY;
+    const Vec3 far(4 * U(g), 4 * U(g), 4 * U(g));
+    for (const Vec3& hint : {t.r.x, far})
+      for (double need : {full.lower - 1e-3, full.lower - 1e-7, full.lower + 1e-7, 0.5 * full.lower, 2 * full.lower + 0.1}) {
+        const QuickGoal goal{need, hint};
+        const PatchQuick q = patch_pair_quick(A, B, &goal);
+        ++looks;
+        skipped += q.complete ? 0 : 1;
+        settled += q.lower >= need ? 1 : 0;
+        EXPECT_EQ(q.lower >= need, full.lower >= need) << "trial " << trial << " need " << need;
+        EXPECT_LE(q.lower, full.lower + ulps) << "trial " << trial;
+        EXPECT_LE(q.lower, truth + ulps) << "trial " << trial;
+        if (q.exact) {
+          EXPECT_TRUE(full.exact) << "trial " << trial;
+          EXPECT_NEAR(q.lower, full.lower, ulps) << "trial " << trial;
+        }
+      }
+  }
+  std::printf("%s: %d looks with a goal, %d skipped a solve, %d settled\n", k.name, looks, skipped,
+              settled);
+  EXPECT_GT(skipped, looks / 10);
+  EXPECT_GT(settled, looks / 10);
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, PatchVsBrute,
                          testing::Values(Kind{false, false, "torus_torus"}, Kind{false, true, "torus_cone"},
                                          Kind{true, false, "cone_torus"}, Kind{true, true, "cone_cone"}),
