@@ -522,29 +522,40 @@ Vec3 patch_point(const Patch& P, double u, double th) {
   return framed_point(P, e1, e2, u, th);
 }
 
-double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
-  Vec3 er;
-  const Vec2 q = patch_local(Q, x, &er);
-  Vec2 best = Q.p0;
+namespace {
+// The plane distance from q (in Q's half-plane, rho >= 0) to Q's arc or
+// segment, and its nearest point *best: the nearer end, or the foot on the
+// arc's circle (the segment's line) when it falls within the arc (segment).
+// win: Q's Gauss window (unused for a segment).
+double nearest_local(const Patch& Q, const GaussWindow& win, const Vec2& q, Vec2* best) {
+  *best = Q.p0;
   double d = (q - Q.p0).norm();
-  if (const double d1 = (q - Q.p1).norm(); d1 < d) d = d1, best = Q.p1;
+  if (const double d1 = (q - Q.p1).norm(); d1 < d) d = d1, *best = Q.p1;
   if (Q.straight) {
     const Vec2 s = Q.p1 - Q.p0;
     const double len2 = s.squaredNorm();
     const double t = len2 > 0 ? (q - Q.p0).dot(s) / len2 : -1.0;
     if (t > 0 && t < 1) {
       const Vec2 foot = Q.p0 + t * s;
-      if (const double df = (q - foot).norm(); df < d) d = df, best = foot;
+      if (const double df = (q - foot).norm(); df < d) d = df, *best = foot;
     }
   } else {
     const Vec2 v = q - Q.c;
     const double D = v.norm();
-    const GaussWindow w = gauss_window(Q);
-    if (D > 0 && v.dot(w.mid) >= w.cos_h * D) {
+    if (D > 0 && v.dot(win.mid) >= win.cos_h * D) {
       const Vec2 foot = Q.c + Q.rho * v / D;
-      if (const double df = std::abs(D - Q.rho); foot.x() >= 0 && df < d) d = df, best = foot;
+      if (const double df = std::abs(D - Q.rho); foot.x() >= 0 && df < d) d = df, *best = foot;
     }
   }
+  return d;
+}
+}  // namespace
+
+double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
+  Vec3 er;
+  const Vec2 q = patch_local(Q, x, &er);
+  Vec2 best;
+  const double d = nearest_local(Q, Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q), q, &best);
   *y = patch_world(Q, best, er);
   return d;
 }
@@ -924,6 +935,101 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
         open[n++] = {b.um, du, b.cu, b.su, b.tm + sgn * 0.5 * dt, 0.5 * dt, b.ct * h.c - sgn * b.st * h.s,
                      b.st * h.c + sgn * b.ct * h.s, b.lu, b.lt + 1};
       }
+    }
+  }
+  *lower = least;
+  return done(true);
+}
+
+bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
+                          int* evals_out, const Vec3* hint) {
+  int evals = 0;
+  auto done = [&](bool ok) {
+    if (evals_out) *evals_out = evals;
+    return ok;
+  };
+  if (T.straight) return done(false);
+  const Circle3 spine = patch_major_circle(T);
+  const double R = spine.radius;
+  const GaussWindow win = W.straight ? GaussWindow{&W, Vec2(1, 0), 1.0, 0.0} : gauss_window(W);
+  // dist(y, W) at a point of the spine, less the rounding of the evaluation
+  // and of y (a few ulps of the coordinates: margin).
+  auto dist = [&](const Vec3& y) {
+    ++evals;
+    Vec2 best;
+    return nearest_local(W, win, patch_local(W, y), &best) - margin;
+  };
+  // A point of the spine closer than this cannot be cleared.
+  const double need = cut + T.rho + margin;
+  // The first point is the spine's nearest to the hint (where a pair that
+  // cannot be cleared usually shows at once), the others follow around.
+  Vec3 e1, e2;
+  axis_frame(T, &e1, &e2);
+  if (hint) {
+    Vec3 v = *hint - spine.center;
+    v -= v.dot(spine.normal) * spine.normal;
+    if (const double len = v.norm(); len > 0) {
+      e1 = v / len;
+      e2 = spine.normal.cross(e1);
+    }
+  }
+  struct End {
+    Vec3 y;
+    double d;
+  };
+  struct Arc {
+    End a, b;
+  };
+  constexpr int kStart = 8, kOpen = 64;
+  Arc open[kOpen];
+  int n = 0;
+  End first{Vec3::Zero(), 0.0}, prev = first;
+  for (int k = 0; k <= kStart; ++k) {
+    End e = first;
+    if (k < kStart) {
+      static constexpr double h = 0.70710678118654752440;  // cos and sin of pi / 4
+      static constexpr double cs[kStart][2] = {{1, 0}, {h, h}, {0, 1}, {-h, h}, {-1, 0}, {-h, -h}, {0, -1}, {h, -h}};
+      e.y = spine.center + R * (cs[k][0] * e1 + cs[k][1] * e2);
+      e.d = dist(e.y);
+      if (e.d < need) return done(false);
+      if (R == 0) {  // a sphere's spine is a point
+        *lower = e.d - T.rho;
+        return done(true);
+      }
+    }
+    if (k == 0) first = e;
+    else open[n++] = {prev, e};
+    prev = e;
+  }
+  double least = std::numeric_limits<double>::infinity();
+  while (n > 0) {
+    const Arc arc = open[--n];
+    const double L2 = (arc.b.y - arc.a.y).squaredNorm();
+    const double sag = R - std::sqrt(std::max(0.0, R * R - 0.25 * L2));
+    const double d0 = std::max(arc.a.d, 0.0), d1 = std::max(arc.b.d, 0.0);
+    const double q0 = d0 * d0, q1 = d1 * d1, dq = q1 - q0;
+    const double chord2 =
+        std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - (L2 > 0 ? 0.25 * dq * dq / L2 : 0.0);
+    const double bound = std::sqrt(std::max(0.0, chord2)) - sag - margin;
+    if (bound >= need) {
+      least = std::min(least, bound - T.rho);
+      continue;
+    }
+    if (evals >= budget || n + 2 > kOpen) return done(false);
+    Vec3 mid = 0.5 * (arc.a.y + arc.b.y) - spine.center;
+    mid -= mid.dot(spine.normal) * spine.normal;
+    const double len = mid.norm();
+    if (!(len > 0)) return done(false);
+    End m{spine.center + (R / len) * mid, 0.0};
+    m.d = dist(m.y);
+    if (m.d < need) return done(false);
+    // The half with the nearer end first: a closer point is found sooner.
+    if (arc.a.d < arc.b.d) {
+      open[n++] = {m, arc.b};
+      open[n++] = {arc.a, m};
+    } else {
+      open[n++] = {arc.a, m};
+      open[n++] = {m, arc.b};
     }
   }
   *lower = least;

@@ -99,6 +99,29 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
                       int* evals = nullptr, Vec2* closer = nullptr);
 
+// A proof that patch W and toroidal patch T are at least `cut` apart from T's
+// major circle alone: every point of T lies within rho_T of that circle, so
+// dist(W, T) >= min over the circle of dist(y, W) - rho_T, a one-dimensional
+// minimum of a closed-form distance (W's, in y's meridian half-plane). Its
+// window is W's own: where T's full torus stays near the solid's true surface
+// (as it does beside the arc, within the fit's error there), the bound is about
+// the distance from W to the other solid, which a neighbour of the closest
+// pair clears by far where the full tori (patch_pair_quick) meet.
+// The circle is cut into arcs, bounded from the distances at their ends:
+// for any set, |y - m|^2 - dist(y)^2 is convex in y (a maximum of functions
+// affine in y), so along a chord of length L and middle m with end distances
+// d0, d1, dist^2 stays at or above the least over t in [0, 1] of
+// (t - 1/2)^2 L^2 - L^2 / 4 + (1 - t) d0^2 + t d1^2 (no loss on a slope,
+// |d1^2 - d0^2| >= L^2, and L^2 / (8 d) at a minimum), and the arc lies
+// within its sagitta of the chord. Arcs are halved until each clears the cut
+// or the budget of evaluations is spent. True when every arc clears: *lower
+// is then the least arc bound (>= cut). False ("not proven") when T is a
+// cone, a point of the circle is closer than cut + rho_T, or the budget runs
+// out. margin: the rounding allowance of the evaluations. hint: a point near
+// where the patches are closest (a query's witness), where the cutting starts.
+bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
+                          int* evals = nullptr, const Vec3* hint = nullptr);
+
 // The point of patch P at profile fraction u in [0, 1] and azimuth th (from a
 // fixed direction normal to P's axis).
 Vec3 patch_point(const Patch& P, double u, double th);

@@ -48,6 +48,8 @@ constexpr int kLocalBudget = 128;
 // 155 K instructions against 460 a box); 512 settles 86 % of the second tries
 // (128: 49 %).
 constexpr int kRetryBudget = 512;
+// Evaluations for each of a leaf pair's two spine bounds (patch_spine_at_least).
+constexpr int kSpineBudget = 48;
 // Node pairs a query pops before its inner pairs get the tight bound too (the
 // paper motion's median query pops 145; see the loop).
 constexpr long kTightInner = 256;
@@ -689,6 +691,23 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           settle(quick.lower);
           continue;
         }
+        // The spine bounds next: each patch, within its own window, against
+        // the other's major circle (patch_spine_at_least), a one-dimensional
+        // proof of a few dozen closed-form evaluations. Neighbours of the
+        // closest pair, whose full tori meet near it, mostly end here.
+        {
+          double spine = 0.0;
+          int evals = 0, more = 0;
+          const bool proven =
+              patch_spine_at_least(P, Q, kernel_cut, round, kSpineBudget, &spine, &evals, &res.point_b) ||
+              patch_spine_at_least(Q, P, kernel_cut, round, kSpineBudget, &spine, &more, &res.point_a);
+          st.spine_evals += evals + more;
+          if (proven) {
+            ++st.spine_pairs;
+            settle(std::max(quick.lower, spine));
+            continue;
+          }
+        }
         // The local proof next: most pairs that reach it are well above the
         // cut, only not by the closed-form bounds. A query where it mostly
         // fails (a tolerance near the rounding of far-off coordinates, where
@@ -702,6 +721,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           const Patch& O = p_small ? Q : P;
           Vec2 closer(kInf, 0.0);
           bool proven = patches_at_least(S, O, kernel_cut, round, kLocalBudget, &local, &evals, &closer);
+          bool by_spine = false;
           st.local_boxes += evals;
           // A point of the boxed patch closer than the cut (the pair holds a
           // better candidate): descend from it to the pair's local minimum and
@@ -716,8 +736,17 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
             const double cut2 = cut() + fa.eps + fb.eps + round;
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
-              proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
-              st.local_boxes += evals;
+              // The spine bounds at the new cut first: the pair's own
+              // minimum is near it, where the boxes cost the most.
+              int se = 0, sm = 0;
+              by_spine = patch_spine_at_least(P, Q, cut2, round, kSpineBudget, &local, &se, &res.point_b) ||
+                         patch_spine_at_least(Q, P, cut2, round, kSpineBudget, &local, &sm, &res.point_a);
+              st.spine_evals += se + sm;
+              proven = by_spine;
+              if (!proven) {
+                proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
+                st.local_boxes += evals;
+              }
             } else if (cut() > 0 && d > fa.eps + fb.eps + round) {
               // The patches hold a pair at d <= cut2: no bound on their
               // distance, less the fit errors, can retire this leaf pair
@@ -731,7 +760,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             }
           }
           if (proven) {
-            ++st.local_pairs;
+            ++(by_spine ? st.spine_pairs : st.local_pairs);
             settle(std::max(quick.lower, local));
             continue;
           }

@@ -51,6 +51,8 @@ struct DistanceStats {
   long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h): the local proof's fallbacks
   long local_pairs = 0;  // patch pairs settled by the local proof (patches_at_least)
   long local_boxes = 0;  // boxes the local proof evaluated (settled or not)
+  long spine_pairs = 0;  // patch pairs settled by a spine bound (patch_spine_at_least), before the local proof
+  long spine_evals = 0;  // points of the spines the spine bounds evaluated (settled or not)
   long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
   long refined = 0;      // parts created by refining fits below the tree leaves
   long nodes_built = 0;  // lazy trees: nodes this query built (0 for eager trees)

@@ -130,6 +130,14 @@ MUTANTS = [
      "q.lower = std::max(q.lower, circle3_circle3_lower_bound(da, db) - ra - rb);",
      "q.lower = std::max(q.lower, circle3_circle3_upper_bound(da, db, goal->hint) - ra - rb);",
      "the quick look's skipped solve takes the filter's pair of points (an upper bound) as the bounding tori's lower bound"),
+    ("spine_no_sagitta", "fast/patch_distance.cpp",
+     "std::sqrt(std::max(0.0, chord2)) - sag - margin;",
+     "std::sqrt(std::max(0.0, chord2)) - margin;",
+     "the spine bound takes the chord's bound for its arc's (the sagitta between them dropped)"),
+    ("spine_chord_no_half_length", "fast/patch_distance.cpp",
+     "0.5 * (q0 + q1) - 0.25 * L2 - (L2",
+     "0.5 * (q0 + q1) - (L2",
+     "the spine bound's chord lemma without the L^2 / 4 of the chord's middle"),
 ]
 
 

@@ -502,6 +502,64 @@ TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
   EXPECT_GT(2 * at_min, separated);
 }
 
+// The spine bound (patch_spine_at_least) against its own one-dimensional
+// minimum, sampled densely: min over T's major circle of dist(y, W) - rho_T,
+// which the sampled minimum can only overstate. A proof above it (or above
+// the patches' distance) would be a lie; just below it the proof must still
+// be possible (the bound is tight where it is refined), and at half of it
+// most proofs succeed.
+TEST_P(PatchVsBrute, SpineBoundNeverAboveItsMinimum) {
+  const Kind k = GetParam();
+  std::mt19937_64 g = kind_rng(k, 61);
+  int tries = 0, proven_half = 0, proven_close = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const KernelTrial t = kernel_trial(g, k);
+    const double coord = std::max(t.coord, 8.0);
+    const double margin = 256 * kEps * coord;
+    for (int side = 0; side < 2; ++side) {
+      const Patch& W = side == 0 ? t.p.A : t.p.B;
+      const Patch& T = side == 0 ? t.p.B : t.p.A;
+      if (T.straight) continue;
+      const Circle3 spine = patch_major_circle(T);
+      const Vec3 any = std::abs(T.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+      const Vec3 e1 = T.a.cross(any).normalized(), e2 = T.a.cross(e1);
+      double brute = INFINITY;
+      constexpr int kSamples = 20000;
+      for (int i = 0; i < kSamples; ++i) {
+        const double th = 2 * M_PI * i / kSamples;
+        brute = std::min(brute, point_patch_distance(W, spine.center + spine.radius * (std::cos(th) * e1 + std::sin(th) * e2)));
+      }
+      brute -= T.rho;
+      if (!(brute > 1e-3)) continue;
+      ++tries;
+      double lower = 0;
+      const Vec3 hint = side == 0 ? t.r.y : t.r.x;
+      EXPECT_FALSE(patch_spine_at_least(W, T, brute + 1e-7, margin, 1 << 14, &lower, nullptr, &hint))
+          << "trial " << trial << " side " << side << ": proven " << lower << " > sampled minimum " << brute;
+      if (t.r.separated && !t.r.degenerate) {
+        EXPECT_FALSE(patch_spine_at_least(W, T, t.r.upper + 1e-7, margin, 1 << 14, &lower))
+            << "trial " << trial << " side " << side << ": proven " << lower << " > distance " << t.r.upper;
+      }
+      for (double cut : {0.5 * brute, brute - 1e-6}) {
+        if (patch_spine_at_least(W, T, cut, margin, 1 << 14, &lower, nullptr, &hint)) {
+          (cut == 0.5 * brute ? proven_half : proven_close) += 1;
+          EXPECT_GE(lower, cut);
+          EXPECT_LE(lower, brute + margin) << "trial " << trial << " side " << side;
+        }
+      }
+    }
+  }
+  std::printf("%s: %d spine bounds, %d proven at half their minimum, %d within 1e-6 of it\n", k.name, tries,
+              proven_half, proven_close);
+  if (k.b_straight && k.a_straight) {
+    EXPECT_EQ(tries, 0);
+  } else {
+    EXPECT_GT(tries, 50);
+    EXPECT_GT(proven_half, tries * 9 / 10);
+    EXPECT_GT(proven_close, tries / 2);
+  }
+}
+
 // The quick look with a goal (the query's filter): it settles exactly the
 // pairs the full look settles (a lower bound at or above the goal), its bound
 // is never above the full look's nor the truth, and an exact answer is the
