@@ -951,6 +951,10 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
   if (T.straight) return done(false);
   const Circle3 spine = patch_major_circle(T);
   const double R = spine.radius;
+  // A nearly straight arc's circle lies far out (R and rho_T large): the
+  // rounding of its points, of their distances and of the tube's subtraction
+  // is a few ulps of those lengths, not of the patches' coordinates.
+  margin += 64 * std::numeric_limits<double>::epsilon() * (spine.center.cwiseAbs().maxCoeff() + R + T.rho);
   const GaussWindow win = W.straight ? GaussWindow{&W, Vec2(1, 0), 1.0, 0.0} : gauss_window(W);
   // dist(y, W) at a point of the spine, less the rounding of the evaluation
   // and of y (a few ulps of the coordinates: margin).
