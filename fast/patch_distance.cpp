@@ -562,8 +562,12 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
 
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
   const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
-  Vec3 yy;
-  auto f = [&](double u, double th) { return patch_nearest(Q, framed_point(P, bp.e1, bp.e2, u, th), &yy); };
+  // patch_nearest's distance, with Q's window computed once.
+  const GaussWindow win = Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q);
+  auto f = [&](double u, double th) {
+    Vec2 best;
+    return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, u, th)), &best);
+  };
   // Steps of the finite differences, in profile fraction and radians: small
   // against a patch, large against rounding (second differences lose
   // ~1e-16 / 1e-8 of the distance's scale, far below what a start needs).
@@ -889,7 +893,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
       const double D = v.norm(), s = D - Q.rho, f = std::abs(s);
       const double c = D > 0 ? v.dot(mid) / D : 1.0;  // cos of the angle from the window's middle
       if (D > 0 && c >= cos_h) truth = std::min(truth, f);
-      bool active = !(D > r) || cos_h <= 0;
+      bool active = !(D > r) || cos_h <= 0 || c >= cos_h;  // (cos_lim below is at most cos_h)
       if (!active) {
         const double sd = r / D, cd = std::sqrt(std::max(0.0, 1 - sd * sd));
         const double cos_lim = cos_h * cd - sin_h * sd;  // cos(half + delta)
