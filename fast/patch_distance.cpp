@@ -768,17 +768,22 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // Boxes carry the cosines and sines of their middle angles (azimuth, and
   // the arc's angle at the middle profile fraction), updated by angle
   // addition with the half-widths of each level, computed once a level.
-  // The azimuth's halves are the same for every call (the sectors are fixed):
-  // a table built once.
+  // The azimuth's halves and the sectors' middles are the same for every call
+  // (the sectors are fixed): a table built once.
   struct Box { double um, du, cu, su, tm, dt, ct, st; int lu, lt; };
   struct HalfAngle { double c, s; };
   constexpr int kSectors = 8;
   struct AzimuthHalves {
     HalfAngle h[64];
+    HalfAngle mid[kSectors];  // the sectors' middles
     AzimuthHalves() {
       for (int k = 0; k < 64; ++k) {
         const double a = std::ldexp(M_PI / kSectors, -(k + 1));
         h[k] = {std::cos(a), std::sin(a)};
+      }
+      for (int k = 0; k < kSectors; ++k) {
+        const double tm = -M_PI + (k + 0.5) * (2 * M_PI / kSectors);
+        mid[k] = {std::cos(tm), std::sin(tm)};
       }
     }
   };
@@ -804,7 +809,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   const double cu0 = std::cos(0.5 * sweep), su0 = std::sin(0.5 * sweep);
   for (int k = kSectors - 1; k >= 0; --k) {
     const double tm = -M_PI + (k + 0.5) * (2 * M_PI / kSectors);
-    open[n++] = {0.5, 0.5, cu0, su0, tm, M_PI / kSectors, std::cos(tm), std::sin(tm), 0, 0};
+    open[n++] = {0.5, 0.5, cu0, su0, tm, M_PI / kSectors, ht.mid[k].c, ht.mid[k].s, 0, 0};
   }
   double least = std::numeric_limits<double>::infinity();
   while (n > 0) {
