@@ -163,7 +163,9 @@ TEST(CircleBinormalCounts, FastAndExactAgreeOnBundledCases) {
       if (fast_count == e.binormals) {
         ++equal;
         // The flatness judge must not call every pair a continuum.
-        if (file.find("/random.json") != std::string::npos) EXPECT_FALSE(continuum_to_rounding(p.a, p.b)) << i;
+        if (file.find("/random.json") != std::string::npos) {
+          EXPECT_FALSE(continuum_to_rounding(p.a, p.b)) << i;
+        }
         flat_finite += fast_count >= 0 && continuum_to_rounding(p.a, p.b);
         continue;
       }

@@ -334,7 +334,9 @@ TEST(SolidDistanceExact, ProgressReportsNestedBrackets) {
     EXPECT_LE(seen[i].lower, r.upper);
     EXPECT_GE(seen[i].upper, r.lower);
     EXPECT_LE(seen[i].boxes, r.boxes);
-    if (i > 0) EXPECT_GE(seen[i].boxes, seen[i - 1].boxes);
+    if (i > 0) {
+      EXPECT_GE(seen[i].boxes, seen[i - 1].boxes);
+    }
   }
 }
 

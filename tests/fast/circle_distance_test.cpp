@@ -187,8 +187,9 @@ TEST_P(CircleDistanceFamily, MatchesClosedFormOrReference) {
     EXPECT_LE(ref_point_circle(r.point_a, k.a), wtol) << fam.name << " #" << i;
     EXPECT_LE(ref_point_circle(r.point_b, k.b), wtol) << fam.name << " #" << i;
     EXPECT_NEAR((r.point_a - r.point_b).norm(), r.distance, wtol + fam.tol * scale) << fam.name << " #" << i;
-    if (k.infinite >= 0)
+    if (k.infinite >= 0) {
       EXPECT_EQ(r.status == CircleCircleStatus::infinitely_many, k.infinite == 1) << fam.name << " #" << i;
+    }
     EXPECT_EQ(r.binormals, r.status == CircleCircleStatus::infinitely_many ? -1 : 0);
   }
   std::printf("%s: worst |fast - ref| / scale = %.3g over %d pairs\n", fam.name.c_str(), worst, n);
