@@ -693,20 +693,20 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         }
         // The spine bounds next: each patch, within its own window, against
         // the other's major circle (patch_spine_at_least), a one-dimensional
-        // proof of a few dozen closed-form evaluations. Neighbours of the
+        // proof of about a dozen closed-form evaluations. Neighbours of the
         // closest pair, whose full tori meet near it, mostly end here.
-        {
-          double spine = 0.0;
+        // spine_proof(c, &bound): both ways at cut c.
+        auto spine_proof = [&](double c, double* bound) {
           int evals = 0, more = 0;
-          const bool proven =
-              patch_spine_at_least(P, Q, kernel_cut, round, kSpineBudget, &spine, &evals, &res.point_b) ||
-              patch_spine_at_least(Q, P, kernel_cut, round, kSpineBudget, &spine, &more, &res.point_a);
+          const bool ok = patch_spine_at_least(P, Q, c, round, kSpineBudget, bound, &evals, &res.point_b) ||
+                          patch_spine_at_least(Q, P, c, round, kSpineBudget, bound, &more, &res.point_a);
           st.spine_evals += evals + more;
-          if (proven) {
-            ++st.spine_pairs;
-            settle(std::max(quick.lower, spine));
-            continue;
-          }
+          return ok;
+        };
+        if (double spine = 0.0; spine_proof(kernel_cut, &spine)) {
+          ++st.spine_pairs;
+          settle(std::max(quick.lower, spine));
+          continue;
         }
         // The local proof next: most pairs that reach it are well above the
         // cut, only not by the closed-form bounds. A query where it mostly
@@ -738,11 +738,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               // The spine bounds at the new cut first: the pair's own
               // minimum is near it, where the boxes cost the most.
-              int se = 0, sm = 0;
-              by_spine = patch_spine_at_least(P, Q, cut2, round, kSpineBudget, &local, &se, &res.point_b) ||
-                         patch_spine_at_least(Q, P, cut2, round, kSpineBudget, &local, &sm, &res.point_a);
-              st.spine_evals += se + sm;
-              proven = by_spine;
+              proven = by_spine = spine_proof(cut2, &local);
               if (!proven) {
                 proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
                 st.local_boxes += evals;

@@ -174,9 +174,12 @@ def pattern_status(src, m):
 
 
 def failed_tests(log_text):
-    # ctest prints "  12 - Name (Failed)" lines after "The following tests FAILED:".
+    # ctest prints "  12 - Name (Failed)" lines after "The following tests FAILED:";
+    # a parameterised test's name is followed by "  # GetParam() = ..." first.
     tail = log_text.split("The following tests FAILED:")[-1] if "The following tests FAILED:" in log_text else ""
-    return re.findall(r"\d+ - (\S+) \((?:Failed|Timeout|SEGFAULT|Subprocess aborted|Exception|Child aborted)", tail)
+    return re.findall(
+        r"\d+ - (\S+)(?:\s+# GetParam\(\) = [^\n(]*)? \((?:Failed|Timeout|SEGFAULT|Subprocess aborted|Exception|Child aborted)",
+        tail)
 
 
 def main():
