@@ -993,15 +993,14 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
   struct Arc {
     End a, b;
   };
-  constexpr int kStart = 8, kOpen = 64;
+  constexpr int kStart = 4, kOpen = 64;
   Arc open[kOpen];
   int n = 0;
   End first{Vec3::Zero(), 0.0}, prev = first;
   for (int k = 0; k <= kStart; ++k) {
     End e = first;
     if (k < kStart) {
-      static constexpr double h = 0.70710678118654752440;  // cos and sin of pi / 4
-      static constexpr double cs[kStart][2] = {{1, 0}, {h, h}, {0, 1}, {-h, h}, {-1, 0}, {-h, -h}, {0, -1}, {h, -h}};
+      static constexpr double cs[kStart][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};  // quarter turns
       e.y = spine.center + R * (cs[k][0] * e1 + cs[k][1] * e2);
       e.d = dist(e.y);
       if (e.d < need) return done(false);

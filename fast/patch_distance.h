@@ -107,10 +107,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 // (as it does beside the arc, within the fit's error there), the bound is about
 // the distance from W to the other solid, which a neighbour of the closest
 // pair clears by far where the full tori (patch_pair_quick) meet.
-// The circle is cut into arcs, bounded from the distances at their ends:
-// for any set, |y - m|^2 - dist(y)^2 is convex in y (a maximum of functions
-// affine in y), so along a chord of length L and middle m with end distances
-// d0, d1, dist^2 stays at or above the least over t in [0, 1] of
+// The circle is cut into arcs (quarters to start), bounded from the distances
+// at their ends: for any set, |y - m|^2 - dist(y)^2 is convex in y (a maximum
+// of functions affine in y), so along a chord of length L and middle m with
+// end distances d0, d1, dist^2 stays at or above the least over t in [0, 1] of
 // (t - 1/2)^2 L^2 - L^2 / 4 + (1 - t) d0^2 + t d1^2 (no loss on a slope,
 // |d1^2 - d0^2| >= L^2, and L^2 / (8 d) at a minimum), and the arc lies
 // within its sagitta of the chord. Arcs are halved until each clears the cut
