@@ -144,7 +144,10 @@ struct GaussWindow {
   Vec2 mid;            // unit direction of the window's middle
   double cos_h, sin_h; // of the window's half-width
 };
+// (A segment has no window: its callers test the segment's own range. It
+// gets the trivial one, without the trig calls.)
 GaussWindow gauss_window(const Patch& T) {
+  if (T.straight) return {&T, Vec2(1, 0), 1.0, 0.0};
   const double half = 0.5 * std::abs(T.sweep);
   const double a = 0.5 * T.sweep;
   const Vec2 mid(std::cos(a) * T.d0.x() - std::sin(a) * T.d0.y(), std::sin(a) * T.d0.x() + std::cos(a) * T.d0.y());
@@ -571,7 +574,7 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
   Vec3 er;
   const Vec2 q = patch_local(Q, x, &er);
   Vec2 best;
-  const double d = nearest_local(Q, Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q), q, &best);
+  const double d = nearest_local(Q, gauss_window(Q), q, &best);
   *y = patch_world(Q, best, er);
   return d;
 }
@@ -579,7 +582,7 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
   const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
   // patch_nearest's distance, with Q's window computed once.
-  const GaussWindow win = Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q);
+  const GaussWindow win = gauss_window(Q);
   auto f = [&](double u, double th) {
     Vec2 best;
     return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, u, th)), &best);
@@ -774,7 +777,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // Q's window: the arc's (its Gauss window, single here), or the segment.
   double seg_len = 0;
   Vec2 dir(1, 0);
-  const GaussWindow win = Q.straight ? GaussWindow{&Q, Vec2(1, 0), 1.0, 0.0} : gauss_window(Q);
+  const GaussWindow win = gauss_window(Q);
   const Vec2& mid = win.mid;
   const double cos_h = win.cos_h, sin_h = win.sin_h;
   if (Q.straight) {
@@ -980,7 +983,7 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
   // rounding of its points, of their distances and of the tube's subtraction
   // is a few ulps of those lengths, not of the patches' coordinates.
   margin += 64 * std::numeric_limits<double>::epsilon() * (spine.center.cwiseAbs().maxCoeff() + R + T.rho);
-  const GaussWindow win = W.straight ? GaussWindow{&W, Vec2(1, 0), 1.0, 0.0} : gauss_window(W);
+  const GaussWindow win = gauss_window(W);
   // dist(y, W) at a point of the spine, less the rounding of the evaluation
   // and of y (a few ulps of the coordinates: margin).
   auto dist = [&](const Vec3& y) {

@@ -615,7 +615,10 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     double lb_pair = kInf;
     bool all_separated = true;
     const BiarcFit fa = qa.fit, fb = qb.fit;
-    const double kernel_cut = cut() + fa.eps + fb.eps + round;
+    // The cut for the fits' patches: their distance must reach it for the
+    // pair's bound, less the fit errors and rounding, to reach cut().
+    auto fits_cut = [&] { return cut() + fa.eps + fb.eps + round; };
+    const double kernel_cut = fits_cut();
     // End circles of either fit that the pair of the adjacent span's fit with
     // the same other fit already puts at kernel_cut or more (less the end
     // points' rounding gap): their sub-problems are skipped, their bound kept.
@@ -677,7 +680,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // The cheap look next: most pairs end here. Told what settles the
         // pair and where the witness is, it skips the circle solves that
         // provably cannot settle it (two thirds of them at eps 1e-5).
-        const QuickGoal goal{cut() + fa.eps + fb.eps + round, res.point_a};
+        const QuickGoal goal{fits_cut(), res.point_a};
         const PatchQuick quick = patch_pair_quick(P, Q, &goal);
         const double disk = quick.lower - fa.eps - fb.eps - round;
         if (disk >= cut()) {
@@ -734,7 +737,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             const Vec3& x = p_small ? xs : xo;
             const Vec3& y = p_small ? xo : xs;
             if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
-            const double cut2 = cut() + fa.eps + fb.eps + round;
+            const double cut2 = fits_cut();
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               // The spine bounds at the new cut first: the pair's own
               // minimum is near it, where the boxes cost the most.
