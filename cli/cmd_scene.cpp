@@ -172,9 +172,9 @@ void add_scene_command(CLI::App& app) {
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("scene", "Many instances: pairs within D, the K closest pairs, nearest neighbours");
   cmd->add_option("CASE", opts->file, "revdist/1 JSON case (instances may carry a \"motion\")")->required();
-  cmd->add_option("--within", opts->within, "every pair at distance <= D")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--within", opts->within, "every pair at distance <= D")->check(finite_number(false));
   cmd->add_option("--closest", opts->closest, "the K closest pairs (default: 1, the scene's minimum)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(true));
   CLI::Option* nearest = cmd->add_option("--nearest", opts->nearest, "the K (--closest) nearest instances to this one");
   cmd->add_option("--frames", opts->frames, "frames 0..N-1, instances moved by their motion (at most 100000)")
       ->check(CLI::Range(1L, 100000L))->capture_default_str();

@@ -152,10 +152,13 @@ void add_stress_command(CLI::App& app) {
   cmd->add_option("--eps", o->stress.eps, "fit bound, relative to each case's size")->capture_default_str();
   cmd->add_option("--tol", o->stress.tol, "bracket tolerance, relative to each case's size")->capture_default_str();
   cmd->add_option("--exact-every", o->stress.exact_every, "run exact/ on solid cases with index % K == 0 (0: never)")
+      ->check(CLI::Range(0, 1000000000))
       ->capture_default_str();
   cmd->add_option("--exact-budget", o->stress.exact_max_boxes, "exact/ boxes per query before giving up")
+      ->check(CLI::Range(1L, 1000000000L))
       ->capture_default_str();
   cmd->add_option("--circle-exact-every", o->stress.circle_exact_every, "the same for circle cases")
+      ->check(CLI::Range(0, 1000000000))
       ->capture_default_str();
   cmd->callback([o] { run(*o); });
 }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -88,6 +89,23 @@ TEST(HostileCli, EpsAndTolLimits) {
   expect_one_line_error(run("distance " + c + " --eps 1e-300"), "smallest meaningful value");
   expect_one_line_error(run("fit " + c + " --eps 1e-14"), "smallest meaningful value");
   expect_one_line_error(run("distance " + c + " --tol 1e-13"), "smallest meaningful value");
+}
+
+// Out-of-range numbers in every command's options: a short line naming the
+// option (CLI11's own positive-number check printed the largest double, 300
+// digits), and negative counts are refused, not taken as "never".
+TEST(HostileCli, BadNumbersInOptionsGetAShortLine) {
+  const std::string c = src("cases/distance/two_spheres.json");
+  for (const std::string& args : std::vector<std::string>{
+           "scene " + c + " --closest 0", "scene " + c + " --within -1", "scene " + c + " --within inf",
+        "bench " + c + " --eps 0", "bench " + c + " --eps 1e-3,nan", "bench " + c + " --seed -1",
+        "stress --family scale --n 1 --seed 1 --exact-every -1", "stress --family scale --n 1 --seed 1 --exact-budget 0",
+        "stress --family scale --n 1 --seed 1 --circle-exact-every -3"}) {
+    const std::string option = args.substr(args.rfind("--"), args.rfind(' ') - args.rfind("--"));
+    const CommandRun r = run(args);
+    expect_one_line_error(r, option + ":");
+    EXPECT_LT(r.err.size(), 160u) << r.err;
+  }
 }
 
 nlohmann::json distance_json(const std::string& args) {
