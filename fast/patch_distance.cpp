@@ -500,14 +500,24 @@ struct BoxedPatch {
   }
   // The box of half-widths (du, dt) around meridian point q (derivative qu)
   // at the azimuth of cosine ct and sine st: its centre x, the radial and
-  // azimuthal directions there, x's first derivatives, and the radius
-  // prof + azi of a ball around x holding the whole box.
+  // azimuthal directions there, x's first derivatives, and the radius of a
+  // ball around x holding the whole box.
   struct Box {
     Vec3 x, er, et, xu, xt;
     double prof, azi;
+    // A point of the box is x moved along its parallel (by rho sin(d) along
+    // the azimuth, rho (1 - cos d) inward, rho <= rmax, |d| <= dt) and along
+    // its meridian (at most prof): within sqrt(azi^2 + (prof + rmax dt^2 / 2)^2)
+    // of x, not prof + azi (the two moves are nearly orthogonal).
+    double ball;
     bool smooth;  // x(u, th) is smooth over the box (off the axis throughout)
-    double a;     // |x_u| du + |x_th| dt bounded: the length of a path of the box
-    double rest;  // half the bound on |x''| along such a path
+    // A straight path of parameters across the box, x(t), has speed
+    // x_u du + x_th dt (at most these half-widths), with x_u in the meridian
+    // plane and x_th along the azimuth: orthogonal. Its acceleration is
+    // x_uu du^2 - rho e_r dt^2 in the meridian plane plus 2 r_u du dt along
+    // the azimuth (|x_uu| = len^2 / rho_P, |r_u| <= len).
+    double a;     // bound on |x'|: the length of such a path
+    double rest;  // half the bound on |x''|
   };
   Box box(Vec2 q, const Vec2& qu, double ct, double st, double du, double dt) const {
     Box b;
@@ -518,11 +528,14 @@ struct BoxedPatch {
     b.x = P.o + q.x() * b.er + q.y() * P.a;
     b.prof = du * len;
     b.azi = dt * rmax;
+    const double inward = b.prof + 0.5 * rmax * dt * dt;
+    b.ball = std::sqrt(b.azi * b.azi + inward * inward);
     b.smooth = !clamped && q.x() - b.prof >= 0;
     b.xu = qu.x() * b.er + qu.y() * P.a;
     b.xt = q.x() * b.et;
-    b.a = len * du + rmax * dt;
-    b.rest = 0.5 * (curv * du * du + 2 * len * du * dt + rmax * dt * dt);
+    b.a = std::sqrt(b.prof * b.prof + b.azi * b.azi);
+    const double in_plane = curv * du * du + rmax * dt * dt, across = 2 * len * du * dt;
+    b.rest = 0.5 * std::sqrt(in_plane * in_plane + across * across);
     return b;
   }
 };
@@ -686,8 +699,9 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
   // Near contact that first-order test needs boxes as small as the gap. The
   // second-order one does not: with f(u, th) = g_Q(x(u, th)) over the box
   // (half-widths du, dt), f = f(m) + grad f(m) . v + R with
-  //   |R| <= (H a^2 + |x_uu| du^2 + 2 |x_uth| du dt + |x_thth| dt^2) / 2,
-  // a = |x_u| du + |x_th| dt, H bounding g_Q's Hessian over the ball (g_Q is
+  //   |R| <= (H a^2 + max |x''|) / 2,
+  // a and max |x''| bounding a parameter path's speed and acceleration
+  // (BoxedPatch::Box), H bounding g_Q's Hessian over the ball (g_Q is
   // a distance to Q's major circle (or centre) or to a line, minus a
   // constant, in Q's meridian half-plane: the Hessian's norm is at most 1/D in
   // that half-plane plus 1/rho about Q's axis, D the distance to the circle
@@ -714,7 +728,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
     const Vec2 q = meridian_point(P, um, &qu);
     const BoxedPatch::Box bx = bp.box(q, qu, std::cos(tm), std::sin(tm), du, dt);
     const double prof = bx.prof, azi = bx.azi;
-    const double r = prof + azi + margin;
+    const double r = bx.ball + margin;
     Vec3 erq;
     const Vec2 qc = patch_local(Q, bx.x, &erq);
     if ((qc - dc).norm() - dr > r) continue;                      // outside Q's bounding torus
@@ -722,14 +736,14 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
     if (std::abs(g) > r) continue;                                // off Q's surface
     // The second-order test, where the box is smooth (r >= 0 throughout) and
     // g_Q is smooth over the ball.
-    const double rho_min = qc.x() - (prof + azi);
+    const double rho_min = qc.x() - bx.ball;
     if (bx.smooth && rho_min > 0) {
       double H = Q.straight ? std::abs(Q.n.x()) / rho_min : 0.0;
       Vec2 n2 = Q.n;
       bool smooth = true;
       if (!Q.straight) {
         const Vec2 v = qc - Q.c;
-        const double D = v.norm(), d_min = D - (prof + azi);
+        const double D = v.norm(), d_min = D - bx.ball;
         smooth = d_min > 0;
         if (smooth) {
           n2 = v / D;
@@ -739,7 +753,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
       if (smooth) {
         const Vec3 grad = n2.x() * erq + n2.y() * Q.a;
         const double first = std::abs(grad.dot(bx.xu)) * du + std::abs(grad.dot(bx.xt)) * dt;
-        const double second = 0.5 * (H * bx.a * bx.a + bp.curv * du * du + 2 * bp.len * du * dt + bp.rmax * dt * dt);
+        const double second = 0.5 * H * bx.a * bx.a + bx.rest;
         if (std::abs(g) > first + second + margin) continue;
       }
     }
@@ -839,7 +853,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     const Vec2 q = meridian_point(P, b.um, b.cu, b.su, &qu);
     const BoxedPatch::Box bx = bp.box(q, qu, b.ct, b.st, du, dt);
     const double prof = bx.prof, azi = bx.azi;
-    const double r = prof + azi;  // every point of the box is within r of x
+    const double r = bx.ball;  // every point of the box is within r of x
     Vec3 erq;
     const Vec2 qq = patch_local(Q, bx.x, &erq);
     // Q lies in its bounding disk (in its meridian half-plane): a box whose

@@ -138,6 +138,14 @@ MUTANTS = [
      "0.5 * (q0 + q1) - 0.25 * L2 - (L2",
      "0.5 * (q0 + q1) - (L2",
      "the spine bound's chord lemma without the L^2 / 4 of the chord's middle"),
+    ("box_ball_no_inward", "fast/patch_distance.cpp",
+     "const double inward = b.prof + 0.5 * rmax * dt * dt;",
+     "const double inward = b.prof;",
+     "a box's ball forgets that a point moved along its parallel also moves inward (rho (1 - cos d))"),
+    ("box_speed_largest_side", "fast/patch_distance.cpp",
+     "b.a = std::sqrt(b.prof * b.prof + b.azi * b.azi);",
+     "b.a = std::max(b.prof, b.azi);",
+     "a box's path speed bound takes the larger of its two orthogonal parts for their length"),
 ]
 
 
