@@ -527,14 +527,16 @@ struct BoxedPatch {
     b.et = ct * e2 - st * e1;
     b.x = P.o + q.x() * b.er + q.y() * P.a;
     b.prof = du * len;
-    b.azi = dt * rmax;
-    const double inward = b.prof + 0.5 * rmax * dt * dt;
+    // The box's points are at most q.x() + prof from the axis (and rmax).
+    const double rbox = std::min(rmax, q.x() + b.prof);
+    b.azi = dt * rbox;
+    const double inward = b.prof + 0.5 * rbox * dt * dt;
     b.ball = std::sqrt(b.azi * b.azi + inward * inward);
     b.smooth = !clamped && q.x() - b.prof >= 0;
     b.xu = qu.x() * b.er + qu.y() * P.a;
     b.xt = q.x() * b.et;
     b.a = std::sqrt(b.prof * b.prof + b.azi * b.azi);
-    const double in_plane = curv * du * du + rmax * dt * dt, across = 2 * len * du * dt;
+    const double in_plane = curv * du * du + rbox * dt * dt, across = 2 * len * du * dt;
     b.rest = 0.5 * std::sqrt(in_plane * in_plane + across * across);
     return b;
   }
