@@ -505,10 +505,10 @@ struct BoxedPatch {
   struct Box {
     Vec3 x, er, et, xu, xt;
     double prof, azi;
-    // A point of the box is x moved along its parallel (by rho sin(d) along
-    // the azimuth, rho (1 - cos d) inward, rho <= rmax, |d| <= dt) and along
-    // its meridian (at most prof): within sqrt(azi^2 + (prof + rmax dt^2 / 2)^2)
-    // of x, not prof + azi (the two moves are nearly orthogonal).
+    // A point of the box, at meridian point q' (|q' - q| <= prof) and azimuth
+    // th + d, is from x (law of cosines about the axis)
+    //   |x' - x|^2 = |q' - q|^2 + 4 q'_r q_r sin^2(d / 2) <= prof^2 + rbox q_r dt^2
+    // (rbox >= q'_r): a ball of that radius holds the box, not prof + azi.
     double ball;
     bool smooth;  // x(u, th) is smooth over the box (off the axis throughout)
     // A straight path of parameters across the box, x(t), has speed
@@ -530,8 +530,7 @@ struct BoxedPatch {
     // The box's points are at most q.x() + prof from the axis (and rmax).
     const double rbox = std::min(rmax, q.x() + b.prof);
     b.azi = dt * rbox;
-    const double inward = b.prof + 0.5 * rbox * dt * dt;
-    b.ball = std::sqrt(b.azi * b.azi + inward * inward);
+    b.ball = std::sqrt(b.prof * b.prof + rbox * q.x() * dt * dt);
     b.smooth = !clamped && q.x() - b.prof >= 0;
     b.xu = qu.x() * b.er + qu.y() * P.a;
     b.xt = q.x() * b.et;
@@ -554,6 +553,14 @@ Vec3 patch_point(const Patch& P, double u, double th) {
   Vec3 e1, e2;
   axis_frame(P, &e1, &e2);
   return framed_point(P, e1, e2, u, th);
+}
+
+PatchBox patch_box(const Patch& P, double um, double tm, double du, double dt) {
+  const BoxedPatch bp(P);
+  Vec2 qu;
+  const Vec2 q = meridian_point(P, um, &qu);
+  const BoxedPatch::Box b = bp.box(q, qu, std::cos(tm), std::sin(tm), du, dt);
+  return {b.x, b.ball, b.a, b.rest};
 }
 
 namespace {

@@ -126,6 +126,17 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
 // fixed direction normal to P's axis).
 Vec3 patch_point(const Patch& P, double u, double th);
 
+// The box of P's parameters [um - du, um + du] x [tm - dt, tm + dt] (profile
+// fraction and azimuth, as in patch_point) as the local proofs bound it: its
+// centre x, the radius of a ball around x holding the box, and bounds on the
+// speed and on half the acceleration of a straight parameter path from the
+// centre across the box (the first and second order of their Taylor bounds).
+struct PatchBox {
+  Vec3 x;
+  double ball, speed, half_accel;
+};
+PatchBox patch_box(const Patch& P, double um, double tm, double du, double dt);
+
 // The nearest point *y of patch Q's surface (arc or segment rotated) to world
 // point x, and its distance. The nearest point of a surface of revolution lies
 // in x's meridian half-plane: the nearer end point, or the foot on the arc's

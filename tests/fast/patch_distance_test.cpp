@@ -560,6 +560,54 @@ TEST_P(PatchVsBrute, SpineBoundNeverAboveItsMinimum) {
   }
 }
 
+// The box bounds of the local proofs (patch_box), sampled: every point of the
+// box within its ball, and along straight parameter paths from the centre the
+// speed (central differences) and the acceleration (second differences) within
+// their bounds. Arcs and segments at random poses, boxes from a whole sector
+// down to small ones, some near the axis. Not vacuous: the corners reach most
+// of the ball.
+TEST(PatchBox, SampledPointsSpeedsAndAccelerationsStayWithinTheBounds) {
+  std::mt19937_64 g = named_rng("PatchBox", 5);
+  std::uniform_real_distribution<double> U(0, 1);
+  const double dus[] = {0.5, 0.25, 0.05, 0.005}, dts[] = {M_PI / 8, M_PI / 32, 0.02, 0.002};
+  int boxes = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Arc2 arc = random_arc(g, trial % 3 == 2);
+    if (trial % 5 == 0) arc.start.x() *= 1e-3;  // starts next to the axis (the arc may still leave it)
+    bool off_axis = true;
+    for (int k = 0; k <= 20; ++k) off_axis = off_axis && arc.point(arc.length * k / 20).x() >= 0.0;
+    if (!off_axis) continue;
+    const Patch P = random_posed_patch(g, arc, 2.0);
+    for (int b = 0; b < 4; ++b) {
+      const double du = dus[(trial + b) % 4], dt = dts[(trial / 4 + b) % 4];
+      const double um = du + (1 - 2 * du) * U(g), tm = 2 * M_PI * U(g);
+      const PatchBox box = patch_box(P, um, tm, du, dt);
+      ++boxes;
+      double reach = 0;
+      for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j) {
+          const double dist = (patch_point(P, um + du * i / 4, tm + dt * j / 4) - box.x).norm();
+          reach = std::max(reach, dist);
+          EXPECT_LE(dist, box.ball * (1 + 1e-12) + 1e-14) << "trial " << trial << " box " << b;
+        }
+      EXPECT_GE(reach, 0.5 * box.ball) << "trial " << trial << " box " << b;
+      for (int path = 0; path < 8; ++path) {
+        const double su = 2 * U(g) - 1, st = 2 * U(g) - 1;
+        const double pu = path < 4 ? (path & 1 ? 1.0 : -1.0) : su, pt = path < 4 ? (path & 2 ? 1.0 : -1.0) : st;
+        auto at = [&](double t) { return patch_point(P, um + t * pu * du, tm + t * pt * dt); };
+        for (double t : {1e-3, 0.5, 1 - 1e-3}) {
+          const double h1 = 1e-6, h2 = 1e-3;
+          const double speed = (at(t + h1) - at(t - h1)).norm() / (2 * h1);
+          const double accel = (at(t + h2) - 2 * at(t) + at(t - h2)).norm() / (h2 * h2);
+          EXPECT_LE(speed, box.speed * (1 + 1e-6) + 1e-8) << "trial " << trial << " box " << b << " t " << t;
+          EXPECT_LE(accel, 2 * box.half_accel * (1 + 1e-3) + 1e-5) << "trial " << trial << " box " << b << " t " << t;
+        }
+      }
+    }
+  }
+  EXPECT_GT(boxes, 600);
+}
+
 // A nearly straight arc (curvature 1e-3: its major circle and tube radius are
 // 1000 long) as the spine bound's T, against small arcs on its concave side
 // (between it and the axis: the other side lies in the huge tube, where the
