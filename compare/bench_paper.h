@@ -18,7 +18,11 @@ struct BenchOptions {
   std::vector<double> eps = {1e-3, 1e-4, 1e-5};
   int frames = 200;         // frames per pair (Figure 12) and of the deformable model (Figures 8, 9)
   int exact_frames = 2;     // frames per pair checked by the certified engine (0: none)
-  long exact_max_boxes = 20000;  // certified engine budget per frame (uncertified frames are counted, not used)
+  // Certified engine budget per frame (uncertified frames are counted, not
+  // used). 20,000 left 4 of the 30 motion frames and 1 of the 10 deforming
+  // ones uncertified at --frames 2000; 2,000,000 (compare's) certifies all 40
+  // in the same 68 s of CPU for the whole run without FCL.
+  long exact_max_boxes = 2000000;
   double proven_tol = 1e-6;      // the proven mode timed beside tol = 2 eps
   std::uint64_t seed = 20200501;
   bool fcl = true;
