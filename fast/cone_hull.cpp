@@ -68,7 +68,14 @@ Vec3 closest_in_simplex(Vert* s, int* n, double* lam) {
   double keep_l[4];
   int keep_n = 0;
   Vec3 best_v = Vec3::Zero();
+  // Only faces holding the newest vertex s[n - 1]: the previous simplex's
+  // closest point was v, and the new support point lies beyond it along -v,
+  // so the new closest point's face holds it (Gilbert's iteration; in
+  // rounding a face without it only stops the iteration early, and any
+  // direction gives a valid bound).
+  const int newest = 1 << (*n - 1);
   for (int mask = 1; mask < (1 << *n); ++mask) {
+    if (!(mask & newest)) continue;
     int idx[4], k = 0;
     for (int i = 0; i < *n; ++i)
       if (mask & (1 << i)) idx[k++] = i;
