@@ -33,22 +33,6 @@ Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t) {
   return p;
 }
 
-Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r) {
-  const Vec3 d = x - p.o;
-  const double z = d.dot(p.a);
-  const Vec3 h = d - z * p.a;
-  const double r = h.norm();
-  if (e_r) {
-    if (r > 0) {
-      *e_r = h / r;
-    } else {
-      // On the axis: every half-plane contains x; pick one.
-      const Vec3 any = std::abs(p.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-      *e_r = p.a.cross(any).normalized();
-    }
-  }
-  return Vec2(r, z);
-}
 
 Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r) { return p.o + q.x() * e_r + q.y() * p.a; }
 

@@ -3,6 +3,8 @@
 // when the arc's centre is on the axis, a spindle patch when it is beyond it) or
 // a conical one (segment: cone, cylinder or flat annulus). World frame.
 #pragma once
+#include <cmath>
+
 #include "core/arc2.h"
 #include "core/circle3.h"
 #include "core/vec.h"
@@ -31,7 +33,23 @@ Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t);
 
 // Local (rho, z) of a world point, and the unit radial direction of its
 // meridian half-plane (any unit vector normal to the axis when x is on it).
-Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r = nullptr);
+// (Inline: the local proofs call it once a box.)
+inline Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r = nullptr) {
+  const Vec3 d = x - p.o;
+  const double z = d.dot(p.a);
+  const Vec3 h = d - z * p.a;
+  const double r = h.norm();
+  if (e_r) {
+    if (r > 0) {
+      *e_r = h / r;
+    } else {
+      // On the axis: every half-plane contains x; pick one.
+      const Vec3 any = std::abs(p.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+      *e_r = p.a.cross(any).normalized();
+    }
+  }
+  return Vec2(r, z);
+}
 Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r);
 
 // The circle swept by the arc's centre (radius |c.r|; a point for a sphere).
