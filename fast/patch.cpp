@@ -36,12 +36,6 @@ Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t) {
 
 Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r) { return p.o + q.x() * e_r + q.y() * p.a; }
 
-Circle3 patch_major_circle(const Patch& p) { return {p.o + p.c.y() * p.a, p.a, std::abs(p.c.x())}; }
-
-Circle3 patch_end_circle(const Patch& p, int i) {
-  const Vec2& q = i == 0 ? p.p0 : p.p1;
-  return {p.o + q.y() * p.a, p.a, std::max(0.0, q.x())};
-}
 
 bool patch_contains_local(const Patch& p, const Vec2& q, double tol) {
   if (!q.allFinite()) return false;
@@ -67,19 +61,6 @@ double patch_surface_function(const Patch& p, const Vec2& q) {
   return p.straight ? p.n.dot(q) - p.off : (q - p.c).norm() - p.rho;
 }
 
-void patch_disk(const Patch& p, Vec2* centre, double* radius) {
-  if (!p.straight && std::abs(p.sweep) > M_PI) {
-    *centre = p.c;
-    *radius = p.rho;
-    return;
-  }
-  *centre = 0.5 * (p.p0 + p.p1);
-  *radius = 0.5 * (p.p1 - p.p0).norm();
-}
-
-Circle3 patch_disk_circle(const Patch& p, const Vec2& centre) {
-  return {p.o + centre.y() * p.a, p.a, std::max(centre.x(), 0.0)};
-}
 
 double patch_extent(const Patch& p, Vec3* centre) {
   // A box of the local ends (and of the arc's extreme points) in (r, z), then

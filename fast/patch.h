@@ -3,6 +3,7 @@
 // when the arc's centre is on the axis, a spindle patch when it is beyond it) or
 // a conical one (segment: cone, cylinder or flat annulus). World frame.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "core/arc2.h"
@@ -53,9 +54,14 @@ inline Vec2 patch_local(const Patch& p, const Vec3& x, Vec3* e_r = nullptr) {
 Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r);
 
 // The circle swept by the arc's centre (radius |c.r|; a point for a sphere).
-Circle3 patch_major_circle(const Patch& p);
+// (This and the small functions below are inline: the kernels call them per
+// arc pair.)
+inline Circle3 patch_major_circle(const Patch& p) { return {p.o + p.c.y() * p.a, p.a, std::abs(p.c.x())}; }
 // The circle swept by end point i (0 or 1); radius 0 at a pole.
-Circle3 patch_end_circle(const Patch& p, int i);
+inline Circle3 patch_end_circle(const Patch& p, int i) {
+  const Vec2& q = i == 0 ? p.p0 : p.p1;
+  return {p.o + q.y() * p.a, p.a, std::max(0.0, q.x())};
+}
 
 // Is local point q on the patch's arc or segment: within tol of its circle or
 // line, and inside its angular or parameter range?
@@ -68,9 +74,19 @@ double patch_surface_function(const Patch& p, const Vec2& q);
 // A disk in (r, z) holding the patch's arc or segment (centre, radius): the
 // chord's midpoint and half chord for arcs up to a half turn, the arc's circle
 // beyond. Rotated, a solid torus around a circle holding the whole patch.
-void patch_disk(const Patch& p, Vec2* centre, double* radius);
+inline void patch_disk(const Patch& p, Vec2* centre, double* radius) {
+  if (!p.straight && std::abs(p.sweep) > M_PI) {
+    *centre = p.c;
+    *radius = p.rho;
+    return;
+  }
+  *centre = 0.5 * (p.p0 + p.p1);
+  *radius = 0.5 * (p.p1 - p.p0).norm();
+}
 // The circle that disk's centre sweeps (world).
-Circle3 patch_disk_circle(const Patch& p, const Vec2& centre);
+inline Circle3 patch_disk_circle(const Patch& p, const Vec2& centre) {
+  return {p.o + centre.y() * p.a, p.a, std::max(centre.x(), 0.0)};
+}
 
 // Radius of a ball around the patch's axis point at the patch's mean height that
 // holds the whole patch (used for root-finding ranges and quick rejection).
