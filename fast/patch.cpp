@@ -33,9 +33,7 @@ Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t) {
   return p;
 }
 
-
 Vec3 patch_world(const Patch& p, const Vec2& q, const Vec3& e_r) { return p.o + q.x() * e_r + q.y() * p.a; }
-
 
 bool patch_contains_local(const Patch& p, const Vec2& q, double tol) {
   if (!q.allFinite()) return false;
@@ -60,7 +58,6 @@ bool patch_contains_local(const Patch& p, const Vec2& q, double tol) {
 double patch_surface_function(const Patch& p, const Vec2& q) {
   return p.straight ? p.n.dot(q) - p.off : (q - p.c).norm() - p.rho;
 }
-
 
 double patch_extent(const Patch& p, Vec3* centre) {
   // A box of the local ends (and of the arc's extreme points) in (r, z), then
