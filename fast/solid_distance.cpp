@@ -345,45 +345,44 @@ struct NeighbourHash {
   }
 };
 // A flat hash table from neighbour keys to indices (the first insert of a key
-// wins), open addressing with linear probing: no allocation per insert.
+// wins), open addressing with linear probing. The slots hold 32-bit positions
+// in the list of entries (0: empty), so the table is small to clear and to
+// grow: slots of whole entries (64 bytes) cost 3 % of the query's
+// instructions at eps 1e-7 in value-initialisation and rehashing alone.
 class NeighbourTable {
  public:
-  NeighbourTable() : slots_(128) {}
+  NeighbourTable() : slots_(256, 0) { entries_.reserve(64); }
   void emplace(const NeighbourKey& k, std::size_t v) {
-    if (4 * (used_ + 1) > 3 * slots_.size()) grow();
-    Slot& s = slots_[index(k)];
-    if (s.used) return;
-    s = {k, v, true};
-    ++used_;
+    std::uint32_t& s = slots_[index(k)];
+    if (s != 0) return;
+    entries_.push_back({k, v});
+    s = static_cast<std::uint32_t>(entries_.size());
+    if (4 * entries_.size() > 3 * slots_.size()) grow();
   }
   // The index stored for k, or nullptr.
   const std::size_t* find(const NeighbourKey& k) const {
-    const Slot& s = slots_[index(k)];
-    return s.used ? &s.value : nullptr;
+    const std::uint32_t s = slots_[index(k)];
+    return s != 0 ? &entries_[s - 1].value : nullptr;
   }
 
  private:
-  struct Slot {
+  struct Item {
     NeighbourKey key;
-    std::size_t value = 0;
-    bool used = false;
+    std::size_t value;
   };
   // The slot holding k, or the empty one where it belongs.
   std::size_t index(const NeighbourKey& k) const {
     const std::size_t mask = slots_.size() - 1;
     std::size_t i = NeighbourHash()(k) & mask;
-    while (slots_[i].used && !(slots_[i].key == k)) i = (i + 1) & mask;
+    while (slots_[i] != 0 && !(entries_[slots_[i] - 1].key == k)) i = (i + 1) & mask;
     return i;
   }
   void grow() {
-    std::vector<Slot> old(slots_.size() * 2);
-    old.swap(slots_);
-    used_ = 0;
-    for (const Slot& s : old)
-      if (s.used) emplace(s.key, s.value);
+    slots_.assign(slots_.size() * 2, 0);
+    for (std::size_t e = 0; e < entries_.size(); ++e) slots_[index(entries_[e].key)] = static_cast<std::uint32_t>(e + 1);
   }
-  std::vector<Slot> slots_;
-  std::size_t used_ = 0;
+  std::vector<std::uint32_t> slots_;
+  std::vector<Item> entries_;
 };
 
 struct Entry {
