@@ -18,9 +18,9 @@ double circle3_circle3_lower_bound(const Circle3& a, const Circle3& b) {
 }
 
 namespace {
-// The nearest point of circle c to x (any point of c when x is on its axis).
-Vec3 nearest_on(const Circle3& c, const Vec3& x) {
-  const Vec3 n = c.normal.normalized();
+// The nearest point of circle c (unit normal n) to x (any point of c when x
+// is on its axis).
+Vec3 nearest_on(const Circle3& c, const Vec3& n, const Vec3& x) {
   Vec3 v = x - c.center;
   v -= n.dot(v) * n;
   const double len = v.norm();
@@ -31,10 +31,12 @@ Vec3 nearest_on(const Circle3& c, const Vec3& x) {
 
 double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec3& hint, int rounds, Vec3* pa_out,
                                    Vec3* pb_out) {
-  Vec3 pa = nearest_on(a, hint), pb = nearest_on(b, pa);
+  // The normals once (the projections use them 2 * rounds times).
+  const Vec3 na = a.normal.normalized(), nb = b.normal.normalized();
+  Vec3 pa = nearest_on(a, na, hint), pb = nearest_on(b, nb, pa);
   for (int i = 1; i < rounds; ++i) {
-    pa = nearest_on(a, pb);
-    pb = nearest_on(b, pa);
+    pa = nearest_on(a, na, pb);
+    pb = nearest_on(b, nb, pa);
   }
   if (pa_out) *pa_out = pa;
   if (pb_out) *pb_out = pb;
