@@ -263,29 +263,41 @@ struct Generic {
   bool infinite = false;
 };
 
-// The general method of the file comment for p (parameterised) against q, in
-// scaled coefficients k (lengths ~1).
-Generic solve_generic(const PairCoeffs& k) {
+// The best sample and the vertex of the parabola through it and its
+// neighbours (clamped to their span): the descent's start (a start there
+// saves Newton steps). fs: the samples.
+double sampled_start(const PairCoeffs& k, double* fs) {
   const auto& tab = sample_table();
-  double fs[kSamples];
   int best = 0;
   for (int i = 0; i < kSamples; ++i) {
     fs[i] = sq_dist(k, tab[2 * i], tab[2 * i + 1]);
     if (fs[i] < fs[best]) best = i;
   }
-  // Start at the vertex of the parabola through the best sample and its
-  // neighbours (clamped to their span): it saves Newton steps.
   const double fl = fs[(best + kSamples - 1) % kSamples], fr = fs[(best + 1) % kSamples];
   const double curv = fl - 2 * fs[best] + fr;
   double off = curv > 0 ? 0.5 * (fl - fr) / curv : 0.0;
   off = std::clamp(off, -1.0, 1.0);
-  Generic g;
-  g.min = descend(k, 2 * kPi * (best + off) / kSamples);
-  Min& cur = g.min;
+  return 2 * kPi * (best + off) / kSamples;
+}
+
+// The global minimum of f by the method of the file comment (fs: the samples).
+Min least(const PairCoeffs& k, double* fs) {
+  Min cur = descend(k, sampled_start(k, fs));
   vranek_rounds(k, &cur);
   // Below a distance of 1e-3 (scaled) the quartic resolves f only to ~1e-13,
   // which could cost more than 1e-10 in distance: near-contact starts as well.
   if (cur.f < 1e-6 && near_contact_starts(k, &cur)) vranek_rounds(k, &cur);
+  return cur;
+}
+
+// The general method of the file comment for p (parameterised) against q, in
+// scaled coefficients k (lengths ~1): the minimum, and whether infinitely many
+// pairs attain it.
+Generic solve_generic(const PairCoeffs& k) {
+  double fs[kSamples];
+  Generic g;
+  g.min = least(k, fs);
+  const Min& cur = g.min;
   // Infinitely many closest pairs. (1) P(θ*) on q's axis: every point of q is
   // equidistant (p tangent to q's axis there; a crossing would be a cusp maximum).
   // (2) f constant along p (coaxial within rounding, Villarceau, a meridian
@@ -420,6 +432,22 @@ PairAnswer solve(const CircleFrame& p, const CircleFrame& q, double sigma) {
 }
 
 }  // namespace
+
+double circle3_circle3_distance_value(const Circle3& a, const Circle3& b) {
+  const bool swap = param_is_a(a, b);
+  const Circle3& p = swap ? a : b;
+  const Circle3& q = swap ? b : a;
+  const double sigma = circle_pair_sigma(a, b);
+  const CircleFrame fp = make_frame(p), fq = make_frame(q);
+  const PairCoeffs k = make_coeffs(fp, fq, sigma);
+  // The named configurations keep their closed forms (solve's tests, the same
+  // arithmetic): points, parallel planes, concentric.
+  if (p.radius == 0 || q.radius == 0 || fp.n.cross(fq.n).norm() <= 8 * kEps ||
+      std::sqrt(k.x0 * k.x0 + k.y0 * k.y0 + k.z0 * k.z0) <= 16 * kEps)
+    return circle3_circle3_distance(a, b).distance;
+  double fs[kSamples];
+  return std::sqrt(std::max(0.0, least(k, fs).f)) / sigma;
+}
 
 Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b) {
   const bool swap = param_is_a(a, b);

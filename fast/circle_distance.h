@@ -43,6 +43,10 @@ struct Circle3Circle3Result {
 // max(r_a, r_b, |c_a - c_b|) (tests: 1e-13·scale random, 1e-10·scale degenerate).
 Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b);
 
+// The same distance alone (no points, no status): the general method skips
+// its tests for infinitely many closest pairs. For lower bounds.
+double circle3_circle3_distance_value(const Circle3& a, const Circle3& b);
+
 // The binormal lines of a and b, one entry per line, so size() is their count
 // (README, `circles`): a line is a segment PQ, P on a, Q on b, normal to both
 // (to a point circle: any direction), of length above 64ε·2^e (2^e the power

@@ -411,7 +411,7 @@ double cheap_bound(const CircleBoundAxes& axes, const Part& pa, const Part& pb) 
 // same leaf pairs). (Bounds from the fits' patches at inner nodes cut node
 // pairs by a fifth but cost more than they save: 25% more instructions.)
 double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
-  return circle3_circle3_distance(A.disk_circle(pa), B.disk_circle(pb)).distance - pa.disk_r - pb.disk_r;
+  return circle3_circle3_distance_value(A.disk_circle(pa), B.disk_circle(pb)) - pa.disk_r - pb.disk_r;
 }
 
 // The query (Algorithm 2), from a warm start when one is given.

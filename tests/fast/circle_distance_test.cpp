@@ -241,6 +241,24 @@ TEST(CircleDistanceMetamorphic, SwapAgreesWithBothParameterisations) {
   EXPECT_GT(compared, 1000);
 }
 
+// circle3_circle3_distance_value, the traversal's bound of two fits' tori:
+// the same method without the points and the test for infinitely many pairs,
+// so the same distance bit for bit on every family, named cases included.
+TEST(CircleDistanceValue, SameDistanceAsTheFullSolve) {
+  Rng rng(test_seed() + 3);
+  int compared = 0;
+  for (const Family& fam : families())
+    for (int i = 0; i < 200; ++i) {
+      const Case k = fam.make(rng, i);
+      ASSERT_EQ(circle3_circle3_distance_value(k.a, k.b), circle3_circle3_distance(k.a, k.b).distance)
+          << fam.name << " #" << i;
+      ASSERT_EQ(circle3_circle3_distance_value(k.b, k.a), circle3_circle3_distance(k.a, k.b).distance)
+          << fam.name << " #" << i << " (b, a)";
+      ++compared;
+    }
+  EXPECT_GT(compared, 1000);
+}
+
 // circle3_circle3_upper_bound, the filter in front of the solve: a pair of
 // points of the circles, so never below the distance (to rounding) from any
 // hint, and the distance itself from a hint at the closest pair (each point of
