@@ -201,8 +201,8 @@ void boundary_vs_interior(Collector& c, const Circle3& E, bool e_on_a) {
     if (!O.straight) lb = std::max(lb, circle3_circle3_lower_bound(E, patch_major_circle(O)) - O.rho);
     if (c.skip(lb)) return;
     if (!c.need_g) {
-      lb = std::max(lb, circle3_circle3_distance(E, od).distance - dr);
-      if (!O.straight) lb = std::max(lb, circle3_circle3_distance(E, patch_major_circle(O)).distance - O.rho);
+      lb = std::max(lb, circle3_circle3_distance_value(E, od) - dr);
+      if (!O.straight) lb = std::max(lb, circle3_circle3_distance_value(E, patch_major_circle(O)) - O.rho);
       if (c.skip(lb)) return;
     }
   }
@@ -245,7 +245,7 @@ void interior_vs_interior(Collector& c, double disk_lb) {
   const Patch& A = c.A;
   const Patch& B = c.B;
   if (!A.straight && !B.straight) {
-    const double lb = circle3_circle3_distance(patch_major_circle(A), patch_major_circle(B)).distance - A.rho - B.rho;
+    const double lb = circle3_circle3_distance_value(patch_major_circle(A), patch_major_circle(B)) - A.rho - B.rho;
     if (c.skip(std::max(lb, disk_lb))) return;
     double dropped = kInf;
     const GaussWindow gw = gauss_window(A);
@@ -372,7 +372,7 @@ double patch_disk_bound(const Patch& A, const Patch& B) {
   double ra, rb;
   patch_disk(A, &ca, &ra);
   patch_disk(B, &cb, &rb);
-  return circle3_circle3_distance(patch_disk_circle(A, ca), patch_disk_circle(B, cb)).distance - ra - rb;
+  return circle3_circle3_distance_value(patch_disk_circle(A, ca), patch_disk_circle(B, cb)) - ra - rb;
 }
 
 // Lower bound from the plane of flat annulus F (a straight patch with n_r = 0):
@@ -416,7 +416,7 @@ PatchQuick patch_pair_quick(const Patch& A, const Patch& B, const QuickGoal* goa
     q.complete = false;
     q.lower = std::max(q.lower, circle3_circle3_lower_bound(da, db) - ra - rb);
   } else {
-    q.lower = std::max(q.lower, circle3_circle3_distance(da, db).distance - ra - rb);
+    q.lower = std::max(q.lower, circle3_circle3_distance_value(da, db) - ra - rb);
   }
   if (A.straight || B.straight || (goal && q.lower >= goal->need)) return q;
   const Circle3 ma = patch_major_circle(A), mb = patch_major_circle(B);
