@@ -367,6 +367,12 @@ PairAnswer point_circle(const Vec3& x, const CircleFrame& c, double sigma) {
   return ans;
 }
 
+// The tests of two named configurations of solve (scaled coefficients,
+// lengths ~1): parallel planes (the unit normals agree to rounding), and
+// concentric circles (|C_p - C_q| within the rounding of frames and offsets).
+bool parallel_planes(const CircleFrame& p, const CircleFrame& q) { return p.n.cross(q.n).norm() <= 8 * kEps; }
+bool concentric(const PairCoeffs& k) { return std::sqrt(k.x0 * k.x0 + k.y0 * k.y0 + k.z0 * k.z0) <= 16 * kEps; }
+
 PairAnswer solve(const CircleFrame& p, const CircleFrame& q, double sigma) {
   // Named: points (radius 0). The larger radius is p's, so q is the point.
   if (q.radius == 0) return point_circle(q.center, p, sigma);
@@ -374,11 +380,10 @@ PairAnswer solve(const CircleFrame& p, const CircleFrame& q, double sigma) {
   PairAnswer ans;
   const PairCoeffs k = make_coeffs(p, q, sigma);
   const double Rp = p.radius * sigma, Rq = k.R;
-  const double dist_c = std::sqrt(k.x0 * k.x0 + k.y0 * k.y0 + k.z0 * k.z0);  // |C_p - C_q|, scaled
   const double tol = 16 * kEps;                      // rounding of frames and offsets at scale ~1
   const double offset = std::sqrt(k.x0 * k.x0 + k.y0 * k.y0);  // C_p off q's axis
 
-  if (p.n.cross(q.n).norm() <= 8 * kEps) {  // parallel planes (unit normals agree to rounding)
+  if (parallel_planes(p, q)) {
     if (offset <= tol) {
       // Named: coaxial, incl. concentric coplanar. Distance constant along the circles.
       const double e = Rp - Rq;
@@ -411,7 +416,7 @@ PairAnswer solve(const CircleFrame& p, const CircleFrame& q, double sigma) {
     ans.dist = std::sqrt(k.z0 * k.z0 + d2 * d2) / sigma;
     return ans;
   }
-  if (dist_c <= tol) {
+  if (concentric(k)) {
     // Named: concentric, tilted planes. Both circles are great circles of
     // concentric spheres; they meet the line of the planes' intersection.
     const Vec3 L = q.n.cross(p.n).normalized();
@@ -440,11 +445,9 @@ double circle3_circle3_distance_value(const Circle3& a, const Circle3& b) {
   const double sigma = circle_pair_sigma(a, b);
   const CircleFrame fp = make_frame(p), fq = make_frame(q);
   const PairCoeffs k = make_coeffs(fp, fq, sigma);
-  // The named configurations keep their closed forms (solve's tests, the same
-  // arithmetic): points, parallel planes, concentric.
-  if (p.radius == 0 || q.radius == 0 || fp.n.cross(fq.n).norm() <= 8 * kEps ||
-      std::sqrt(k.x0 * k.x0 + k.y0 * k.y0 + k.z0 * k.z0) <= 16 * kEps)
-    return circle3_circle3_distance(a, b).distance;
+  // The named configurations keep their closed forms: points (q's radius is
+  // the smaller), parallel planes, concentric.
+  if (q.radius == 0 || parallel_planes(fp, fq) || concentric(k)) return circle3_circle3_distance(a, b).distance;
   double fs[kSamples];
   return std::sqrt(std::max(0.0, least(k, fs).f)) / sigma;
 }
