@@ -543,10 +543,15 @@ struct BoxedPatch {
   }
 };
 
-// patch_point with P's axis frame (axis_frame) given.
+// The point of P at meridian point q and the azimuth of cosine c and sine s
+// about P's axis frame (axis_frame) e1, e2.
+Vec3 framed_point(const Patch& P, const Vec3& e1, const Vec3& e2, const Vec2& q, double c, double s) {
+  return P.o + std::max(q.x(), 0.0) * (c * e1 + s * e2) + q.y() * P.a;
+}
+
+// patch_point with P's axis frame given.
 Vec3 framed_point(const Patch& P, const Vec3& e1, const Vec3& e2, double u, double th) {
-  const Vec2 q = meridian_point(P, u);
-  return P.o + std::max(q.x(), 0.0) * (std::cos(th) * e1 + std::sin(th) * e2) + q.y() * P.a;
+  return framed_point(P, e1, e2, meridian_point(P, u), std::cos(th), std::sin(th));
 }
 
 }  // namespace
@@ -621,8 +626,7 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
   const double c_ht = std::cos(ht), s_ht = std::sin(ht);
   auto g = [&](const Vec2& q, double c, double s) {
     Vec2 best;
-    const Vec3 x = P.o + std::max(q.x(), 0.0) * (c * bp.e1 + s * bp.e2) + q.y() * P.a;
-    return nearest_local(Q, win, patch_local(Q, x), &best);
+    return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, q, c, s)), &best);
   };
   double u = std::clamp(start.x(), 0.0, 1.0), th = start.y();
   double fu = f(u, th);
@@ -868,12 +872,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   // first: a proof clears every box in any order, a failure ends sooner.
   int order[kSectors];
   {
-    Vec2 qu0;
-    const Vec2 q0 = meridian_point(P, 0.5, cu0, su0, &qu0);
+    const Vec2 q0 = meridian_point(P, 0.5, cu0, su0, nullptr);
     double key[kSectors];
     for (int k = 0; k < kSectors; ++k) {
-      const Vec3 x = P.o + std::max(q0.x(), 0.0) * (ht.mid[k].c * bp.e1 + ht.mid[k].s * bp.e2) + q0.y() * P.a;
-      key[k] = (patch_local(Q, x) - disk_c).squaredNorm();
+      key[k] = (patch_local(Q, framed_point(P, bp.e1, bp.e2, q0, ht.mid[k].c, ht.mid[k].s)) - disk_c).squaredNorm();
       order[k] = k;
     }
     std::sort(order, order + kSectors, [&](int a, int b) { return key[a] > key[b]; });
