@@ -73,6 +73,10 @@ void save_worst(const StressReport& r, const std::string& dir) {
     const std::string path = dir + "/stress_" + f.name + "_" + std::to_string(f.worst_index) + ".json";
     write_file_atomically(path, f.worst_case.dump(1) + "\n");
   }
+  for (const FamilyStats& f : r.families)
+    for (const FamilyStats::Unconverged& u : f.unconverged)
+      write_file_atomically(dir + "/stress_" + f.name + "_" + std::to_string(u.index) + "_not_converged.json",
+                            u.case_json.dump(1) + "\n");
 }
 
 void print(const StressReport& r, bool json) {
@@ -98,6 +102,13 @@ void print(const StressReport& r, bool json) {
               t.str().c_str());
   for (const FamilyStats& f : r.families)
     if (f.worst_violation) std::printf("worst %s #%ld: %s\n", f.name.c_str(), f.worst_index, f.worst_what.c_str());
+  for (const FamilyStats& f : r.families) {
+    for (const FamilyStats::Unconverged& u : f.unconverged)
+      std::printf("not converged %s #%ld: %s\n", f.name.c_str(), u.index, u.what.c_str());
+    if (f.not_converged > static_cast<long>(f.unconverged.size()))
+      std::printf("not converged %s: %ld more (the %zu lowest indices are listed)\n", f.name.c_str(),
+                  f.not_converged - static_cast<long>(f.unconverged.size()), f.unconverged.size());
+  }
 }
 
 void run(const Options& o) {

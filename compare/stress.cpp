@@ -30,6 +30,7 @@ constexpr double kEpsMachine = std::numeric_limits<double>::epsilon();
 struct Outcome {
   bool nan = false;
   bool not_converged = false;
+  std::string reason;  // the query's, when it did not converge
   std::map<std::string, double> violations;  // kind -> margin / scale
   double abs_error = 0.0, rel_error = 0.0;
   bool exact_checked = false, exact_uncertified = false, brute_checked = false, expected_checked = false;
@@ -81,6 +82,7 @@ Outcome check_solid(const StressCase& c, const StressOptions& opt, const StressE
     return o;
   }
   o.not_converged = !r.converged;
+  if (o.not_converged) o.reason = r.reason;
   if (r.lower > r.upper + allow || r.lower < 0 || r.distance < r.lower - allow || r.distance > r.upper + allow)
     o.violate("inconsistent", std::max(r.lower - r.upper, 0.0) / scale);
   if (r.converged && r.upper - r.lower > tol + allow) o.violate("width_over_tol", (r.upper - r.lower - tol) / scale);
@@ -218,7 +220,20 @@ bool worse(bool va, double sa, long ia, bool vb, double sb, long ib) {
   return ia < ib;
 }
 
+// Adds a case to the family's list of unconverged ones, which keeps the
+// lowest indices (shards merge to the unsharded run's list).
+void list_unconverged(std::vector<FamilyStats::Unconverged>* list, FamilyStats::Unconverged u) {
+  auto at = std::lower_bound(list->begin(), list->end(), u.index,
+                             [](const FamilyStats::Unconverged& x, long i) { return x.index < i; });
+  if (at != list->end() && at->index == u.index) return;
+  list->insert(at, std::move(u));
+  if (list->size() > kListedUnconverged) list->pop_back();
+}
+
 void add_outcome(FamilyStats* f, const StressCase& c, const Outcome& o) {
+  if (o.not_converged && (f->unconverged.size() < kListedUnconverged || c.index < f->unconverged.back().index))
+    list_unconverged(&f->unconverged, {c.index, o.reason + "; " + o.what + (c.note.empty() ? "" : "; " + c.note),
+                                       stress_case_json(c)});
   ++f->n;
   f->nans += o.nan;
   f->not_converged += o.not_converged;
@@ -351,6 +366,9 @@ Json stress_json(const StressReport& r) {
   for (const FamilyStats& f : r.families) {
     Json kinds = Json::object();
     for (const auto& [k, v] : f.kinds) kinds[k] = v;
+    Json unconverged = Json::array();
+    for (const FamilyStats::Unconverged& u : f.unconverged)
+      unconverged.push_back({{"index", u.index}, {"what", u.what}, {"case", u.case_json}});
     fams.push_back({{"name", f.name},
                     {"kind", f.circle ? "circle" : "solid"},
                     {"n", f.n},
@@ -359,6 +377,7 @@ Json stress_json(const StressReport& r) {
                     {"max_rel_error", f.max_rel_error},
                     {"nans", f.nans},
                     {"not_converged", f.not_converged},
+                    {"not_converged_cases", unconverged},
                     {"time_s", f.time_s},
                     {"exact_checked", f.exact_checked},
                     {"exact_uncertified", f.exact_uncertified},
@@ -443,6 +462,18 @@ StressReport stress_from_json(const Json& j) {
       f.worst_score = w.at("score").is_null() ? INFINITY : w.at("score").get<double>();
       f.worst_what = w.at("what").get<std::string>();
       f.worst_case = w.at("case");
+      // (Records written before the list was added have none.)
+      if (fj.contains("not_converged_cases")) {
+        for (const Json& u : fj.at("not_converged_cases")) {
+          const long index = count(u.at("index"), f.name + " not_converged_cases index");
+          if (!f.unconverged.empty() && index <= f.unconverged.back().index)
+            throw std::runtime_error(f.name + ": not_converged_cases out of order");
+          f.unconverged.push_back({index, u.at("what").get<std::string>(), u.at("case")});
+        }
+        if (f.unconverged.size() > kListedUnconverged ||
+            static_cast<long>(f.unconverged.size()) > f.not_converged)
+          throw std::runtime_error(f.name + ": more not_converged_cases than not_converged or than listed");
+      }
       r.families.push_back(std::move(f));
     }
     return r;
@@ -481,6 +512,7 @@ StressReport merge_stress(const std::vector<StressReport>& shards) {
       f.max_abs_error = std::max(f.max_abs_error, g.max_abs_error);
       f.max_rel_error = std::max(f.max_rel_error, g.max_rel_error);
       for (const auto& [k, v] : g.kinds) f.kinds[k] += v;
+      for (const FamilyStats::Unconverged& u : g.unconverged) list_unconverged(&f.unconverged, u);
       if (g.worst_index >= 0 &&
           (f.worst_index < 0 || worse(g.worst_violation, g.worst_score, g.worst_index, f.worst_violation,
                                       f.worst_score, f.worst_index))) {

@@ -87,7 +87,16 @@ struct FamilyStats {
   long worst_index = -1;
   std::string worst_what;
   nlohmann::json worst_case;
+  // The cases that did not converge, by index (the lowest kListedUnconverged
+  // of them): what the query said and the case file, to rerun one alone.
+  struct Unconverged {
+    long index = 0;
+    std::string what;
+    nlohmann::json case_json;
+  };
+  std::vector<Unconverged> unconverged;
 };
+constexpr std::size_t kListedUnconverged = 10;
 
 struct StressReport {
   std::uint64_t seed = 0;

@@ -5,6 +5,7 @@
 // (brute force, support function) match closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -132,6 +133,57 @@ TEST(Stress, MergedShardsEqualTheUnshardedRun) {
   // Not a complete set, or a shard twice: refused.
   EXPECT_THROW(merge_stress({shards[0], shards[1]}), std::runtime_error);
   EXPECT_THROW(merge_stress({shards[0], shards[0], shards[1]}), std::runtime_error);
+}
+
+// A query that does not converge is listed by index (the lowest ones), with
+// the query's reason and its case file, and the lists of shards merge to the
+// unsharded run's. The engine here fails to converge on every third case.
+TEST(Stress, UnconvergedCasesAreListedAndMerge) {
+  const std::uint64_t s = seed(5, "Stress.UnconvergedCasesAreListedAndMerge");
+  StressEngines stalling;
+  long calls = 0;
+  stalling.solid = [&calls](const PosedSolid& a, const PosedSolid& b, const DistanceOptions& o) {
+    SolidDistanceResult r = solid_distance(a, b, o);
+    if (calls++ % 3 == 0) {
+      r.converged = false;
+      r.reason = "test: stalled on purpose";
+    }
+    return r;
+  };
+  StressOptions o = quick_options();
+  o.exact_every = 0;
+  const std::vector<std::string> fams = {"tangent_touching"};
+  // Unsharded, every case in index order: cases 0, 3, ..., 33 stall (12 of 36).
+  const StressReport whole = run_stress(fams, 36, s, 1, 1, o, stalling);
+  const FamilyStats& f = whole.families.at(0);
+  EXPECT_EQ(f.not_converged, 12);
+  ASSERT_EQ(f.unconverged.size(), kListedUnconverged);
+  for (std::size_t i = 0; i < f.unconverged.size(); ++i) {
+    EXPECT_EQ(f.unconverged[i].index, static_cast<long>(3 * i));
+    EXPECT_NE(f.unconverged[i].what.find("test: stalled on purpose"), std::string::npos) << f.unconverged[i].what;
+    EXPECT_EQ(f.unconverged[i].case_json, stress_case_json(make_stress_case("tangent_touching", 3 * i, s)));
+  }
+  // Three shards (each stalls on its own every third case), through JSON text.
+  std::vector<StressReport> shards;
+  std::vector<long> expected;
+  for (int k : {1, 2, 3}) {
+    calls = 0;
+    const std::string text = stress_json(run_stress(fams, 36, s, k, 3, o, stalling)).dump();
+    shards.push_back(stress_from_json(nlohmann::json::parse(text)));
+    for (long i = k - 1, j = 0; i < 36; i += 3, ++j)
+      if (j % 3 == 0) expected.push_back(i);
+  }
+  std::sort(expected.begin(), expected.end());
+  expected.resize(kListedUnconverged);
+  const StressReport merged = merge_stress(shards);
+  const FamilyStats& m = merged.families.at(0);
+  EXPECT_EQ(m.not_converged, 12);
+  ASSERT_EQ(m.unconverged.size(), kListedUnconverged);
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(m.unconverged[i].index, expected[i]);
+  // A list longer than the count is refused.
+  nlohmann::json bad = stress_json(whole);
+  bad["families"][0]["not_converged"] = 2;
+  EXPECT_THROW(stress_from_json(bad), std::runtime_error);
 }
 
 TEST(Stress, WorstCasesAreValidCaseFiles) {
