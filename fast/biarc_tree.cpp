@@ -18,6 +18,8 @@ namespace {
 // Deep enough for eps ~ 1e-15 of the profile size (cubic convergence), shallow
 // enough to stop a runaway split of a span whose hypotheses cannot hold.
 constexpr int kMaxDepth = 40;
+// Arcs turning less than this (radians) are fitted by the chord (fit_curve_span).
+constexpr double kFlatSweep = 1e-7;
 
 // Builds nodes into `tree`. Node, fit and pending indices are global: those
 // below the base counts belong to a shared tree that is never written (a lazy
@@ -151,7 +153,7 @@ struct Builder {
     SpanEnds left, right;
     split_span(piece, u0, u1, e, &left, &right);
     Capsule cap;
-    BiarcFit f = fit_curve_span(piece, piece_index, u0, u1, e, left.p1, slack, &cap);
+    BiarcFit f = fit_curve_span(piece, piece_index, u0, u1, e, left.p1, slack, &cap, eps);
     f.depth = static_cast<std::uint8_t>(depth);
     node_at(node).fit = add_fit(f);
     const bool proven = f.eps < std::numeric_limits<double>::infinity();
@@ -264,13 +266,39 @@ void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, Spa
 }
 
 BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0, double u1, const SpanEnds& e,
-                        const Vec2& mid, double slack, Capsule* capsule) {
+                        const Vec2& mid, double slack, Capsule* capsule, double chord_eps) {
   const LensBound lens = lens_bound(e);
   const Biarc b = fit_curve_biarc(piece, u0, u1, e, mid);
   BiarcFit f;
   f.arc[0] = b.arc[0];
   f.arc[1] = b.arc[1];
   f.eps = lens.hypotheses_ok ? lens.width + slack : std::numeric_limits<double>::infinity();
+  // A span so nearly straight that both arcs turn less than kFlatSweep: the
+  // chord instead, a cone. The torus of such an arc has a major radius of a
+  // million times the arc or more, at which the patch kernel's tests (scaled
+  // to the whole circle) accept points off the patch: its bounds stay below
+  // the distance and the query cannot converge (stress seed 42,
+  // near_inflection #293: arcs of radius 3e4 and length 1e-4). The chord
+  // lies in the lens band, whose height over it is at most H =
+  // max(|s_A|, |s_B|) (lens_capsule's peak heights), and both curve and
+  // chord are graphs over the chord: every point of each is within H of the
+  // other. H is below 1e-7 of the chord here, but it shrinks with the square
+  // of the span, the biarc's bound with the cube: the tree takes the chord
+  // only where it meets the requested bound (chord_eps), so flat curves at
+  // the finest eps keep the biarc's leaf counts; the query's refinements take
+  // it always (+inf).
+  if (lens.hypotheses_ok && std::abs(f.arc[0].curvature * f.arc[0].length) < kFlatSweep &&
+      std::abs(f.arc[1].curvature * f.arc[1].length) < kFlatSweep) {
+    const Vec2 v = e.p1 - e.p0;
+    const double d = v.norm();
+    const double h = 0.5 * d * std::max(std::abs(std::tan(0.5 * lens.alpha)), std::abs(std::tan(0.5 * lens.beta)));
+    if (d > 0 && h + slack <= chord_eps) {
+      f.arc[0] = Arc2{e.p0, v / d, 0.0, d};
+      f.arc[1] = Arc2{e.p1, v / d, 0.0, 0.0};
+      f.arcs = 1;
+      f.eps = h + slack;
+    }
+  }
   f.u0 = u0;
   f.u1 = u1;
   f.piece = piece_index;

@@ -24,6 +24,7 @@
 // it. Parts of a profile no query reaches are never fitted: a deformable solid
 // at a new time costs what its queries touch, not a whole rebuild.
 #pragma once
+#include <limits>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -92,9 +93,14 @@ void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, Spa
 
 // The biarc fit of curve span piece[u0, u1] (end data e, `mid` the curve's
 // point at the mid parameter), its proven eps (lens width + slack; +inf when
-// the spiral hypotheses fail) and its capsule (radius +inf then).
+// the spiral hypotheses fail) and its capsule (radius +inf then). A span so
+// flat that both arcs turn less than 1e-7 rad is fitted by its chord instead
+// (one straight arc; eps the lens's height over the chord + slack) when that
+// eps is at most chord_eps: the patch kernels lose their accuracy on tori a
+// million times larger than their arcs.
 BiarcFit fit_curve_span(const Piece& piece, std::int32_t piece_index, double u0, double u1, const SpanEnds& e,
-                        const Vec2& mid, double slack, Capsule* capsule);
+                        const Vec2& mid, double slack, Capsule* capsule,
+                        double chord_eps = std::numeric_limits<double>::infinity());
 
 // Builds the tree of `profile` with requested error bound eps > 0; lazy: down
 // to the spiral level (and below only where a node is unproven), the rest on demand.

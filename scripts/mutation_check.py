@@ -150,6 +150,10 @@ MUTANTS = [
      "b.a = std::sqrt(b.prof * b.prof + b.azi * b.azi);",
      "b.a = std::max(b.prof, b.azi);",
      "a box's path speed bound takes the larger of its two orthogonal parts for their length"),
+    ("chord_height_halved", "fast/biarc_tree.cpp",
+     "const double h = 0.5 * d * std::max(",
+     "const double h = 0.25 * d * std::max(",
+     "a flat span's chord fit claims half the lens's height over the chord"),
 ]
 
 

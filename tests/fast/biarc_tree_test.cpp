@@ -161,6 +161,50 @@ TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
   check_tree(can, tree, 1e-6);
 }
 
+// Spans of a nearly straight curve (a cubic bulging 1.7e-6 over length 1,
+// as stress near_inflection #293) whose biarcs turn less than 1e-7 rad are
+// fitted by their chord: one straight arc from end to end, its eps (the lens's
+// height over the chord) covering the sampled distance both ways. A chord_eps
+// below that height keeps the biarc, as the tree does for finer eps.
+TEST(BiarcTree, FlatSpansAreFittedByTheirChord) {
+  const Piece piece = bezier_piece({{0.6, 0}, {0.6000016707045271, 1.0 / 3}, {0.5999983292954728, 2.0 / 3}, {0.6, 1}});
+  const double slack = 64 * 2.220446049250313e-16;
+  int chords = 0;
+  for (double len : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    for (double u0 : {0.0, 0.3, 0.5 - 0.5 * len, 1.0 - len}) {
+      const double u1 = u0 + len;
+      SpanEnds e;
+      e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
+      e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);
+      const Vec2 mid = piece_point(piece, 0.5 * (u0 + u1));
+      Capsule cap;
+      const BiarcFit biarc = fit_curve_span(piece, 0, u0, u1, e, mid, slack, &cap, 0.0);
+      const BiarcFit f = fit_curve_span(piece, 0, u0, u1, e, mid, slack, &cap);
+      SCOPED_TRACE("span [" + std::to_string(u0) + ", " + std::to_string(u1) + "]");
+      ASSERT_EQ(biarc.arcs, 2);  // chord_eps 0: never the chord
+      const double turn = std::max(std::abs(biarc.arc[0].curvature * biarc.arc[0].length),
+                                   std::abs(biarc.arc[1].curvature * biarc.arc[1].length));
+      const double h = sampled_hausdorff(piece, u0, u1, f.arc, f.arcs, 2000);
+      EXPECT_LE(h, f.eps * (1 + 1e-9) + 1e-15);
+      if (turn >= 1e-7) {
+        EXPECT_EQ(f.arcs, 2);
+        continue;
+      }
+      ++chords;
+      EXPECT_EQ(f.arcs, 1);
+      EXPECT_EQ(f.arc[0].curvature, 0.0);
+      EXPECT_EQ(f.arc[0].start, e.p0);
+      EXPECT_LT((f.arc[0].end() - e.p1).norm(), 1e-15);
+      EXPECT_LE(f.eps, 1e-7 * len + slack);
+      // The height is what the chord costs: at least the sampled distance, at
+      // most a few times it (the lens is as tall as the curve's own bulge).
+      EXPECT_GE(f.eps, h);
+      EXPECT_LE(f.eps - slack, 8 * h + 1e-15);
+    }
+  }
+  EXPECT_GE(chords, 4);
+}
+
 TEST(BiarcTree, SpindleArcSplitAtExtremes) {
   // Spindle: an arc whose centre (-1, 1) lies beyond the axis; it meets the
   // axis at a corner. The r extreme (z = 1) splits it into two exact spans.
