@@ -75,7 +75,8 @@ struct Solid {
 
   explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
     parts.reserve(256);
-    parts.push_back(placed(from_node(0, 0)));
+    parts.push_back(from_node(0, 0));
+    place(parts.back());
   }
 
   Part from_node(std::int32_t node, int level) const {
@@ -95,32 +96,30 @@ struct Solid {
   // The circle the part's disk centre sweeps, in the world.
   Circle3 disk_circle(const Part& p) const { return {p.world_c, axis, disk_circle_radius(p)}; }
   static double disk_circle_radius(const Part& p) { return std::max(p.disk_c.x(), 0.0); }
-  Part placed(Part p) const {
-    p.world_c = s.t + p.disk_c.y() * axis;
-    return p;
-  }
+  void place(Part& p) const { p.world_c = s.t + p.disk_c.y() * axis; }
 
   bool can_split(const Part& p, int max_refine) const {
     if (!p.has_fit) return true;
     return p.level < max_refine && p.fit.u1 > p.fit.u0 && p.disk_r > 0;
   }
 
-  // Splits part i (memoised: the children are shared by every pair).
+  // Splits part i (memoised: the children are shared by every pair). The
+  // children are built in place (a Part is ~200 bytes, and the first split
+  // of a node pair is on the query's path: copies cost 1 % of it).
   std::int32_t split(std::int32_t i, long* refined) {
     if (parts[i].child >= 0) return parts[i].child;
-    const Part p = parts[i];  // copy: push_back may reallocate
-    Part c0, c1;
-    if (!p.has_fit) {
-      const std::int32_t tc = tree.children(p.node);
-      c0 = from_node(tc, 0);
-      c1 = from_node(tc + 1, 0);
+    const auto k = static_cast<std::int32_t>(parts.size());
+    if (!parts[i].has_fit) {
+      const std::int32_t tc = tree.children(parts[i].node);
+      parts.push_back(from_node(tc, 0));  // (may reallocate: parts[i] is read again below only)
+      parts.push_back(from_node(tc + 1, 0));
     } else {
-      refine(p, &c0, &c1);
+      parts.resize(k + 2);
+      refine(parts[i], &parts[k], &parts[k + 1]);
       *refined += 2;
     }
-    const auto k = static_cast<std::int32_t>(parts.size());
-    parts.push_back(placed(c0));
-    parts.push_back(placed(c1));
+    place(parts[k]);
+    place(parts[k + 1]);
     parts[i].child = k;
     return k;
   }
