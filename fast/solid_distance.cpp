@@ -669,13 +669,17 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         if (f.arc[k].length > 0) last = k, first = first < 0 ? k : first;
       return (i == first && !(cover & 1u) ? 1u : 0u) | (i == last && !(cover & 2u) ? 2u : 0u);
     };
+    // B's patches once (the loop below pairs each with both of A's).
+    Patch QB[2];
+    for (int j = 0; j < fb.arcs; ++j)
+      if (fb.arc[j].length > 0) QB[j] = make_patch(fb.arc[j], pb.R, pb.t);
     for (int i = 0; i < fa.arcs; ++i) {
       if (fa.arc[i].length <= 0) continue;
       const Patch P = make_patch(fa.arc[i], pa.R, pa.t);
       const unsigned outer_a = outer_ends(fa, i, covered);
       for (int j = 0; j < fb.arcs; ++j) {
         if (fb.arc[j].length <= 0) continue;
-        const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
+        const Patch& Q = QB[j];
         const unsigned outer = outer_a | outer_ends(fb, j, covered >> 2) << 2;
         // Closed-form bounds first (the bounding tori, and the tubes of two
         // toroidal patches): an arc pair they retire needs no iteration.
