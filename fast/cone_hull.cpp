@@ -266,4 +266,41 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
   return res;
 }
 
+double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  // How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
+  // = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
+  // foot on the chord's line then lies on the chord).
+  auto sag = [](const Patch& P) {
+    if (P.straight) return 0.0;
+    if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
+    const double s = std::sin(0.25 * std::abs(P.sweep));
+    return 2 * P.rho * s * s * (1 + 8 * kEps);
+  };
+  const double sa = sag(A), sb = sag(B);
+  if (!std::isfinite(sa + sb) || !(dir.squaredNorm() > 0)) return kNone;
+  const Vec3 shift = A.o + 0.5 * (A.p0.y() + A.p1.y()) * A.a;
+  const Frustum fa = frustum(A, shift), fb = frustum(B, shift);
+  double size = 0;
+  for (const Frustum* f : {&fa, &fb})
+    for (int i = 0; i < 2; ++i) size = std::max(size, f->c[i].cwiseAbs().maxCoeff() + f->r[i]);
+  const double coord = std::max({A.o.cwiseAbs().maxCoeff(), B.o.cwiseAbs().maxCoeff(), shift.cwiseAbs().maxCoeff(),
+                                 std::abs(A.p0.y()), std::abs(A.p1.y()), std::abs(B.p0.y()), std::abs(B.p1.y())});
+  double best = kNone;
+  Vec3 u = dir;
+  for (int k = 0; k <= steps; ++k) {
+    Vec3 pa, pb;
+    const double g = -support(fa, -u, &pa) - support(fb, u, &pb);
+    // Rounding as in cone_hull_distance.
+    const double err = 32 * kEps * u.lpNorm<1>() * (size + coord);
+    best = std::max(best, (g - err) / (u.norm() * (1 + 4 * kEps)));
+    // The support points' difference: the next direction (a step of
+    // Gilbert's iteration without its simplex).
+    const Vec3 next = pa - pb;
+    if (!(next.squaredNorm() > 0)) break;
+    u = next;
+  }
+  return best - sa - sb;
+}
+
 }  // namespace revdist

@@ -25,4 +25,15 @@ struct ConeHullResult {
 // Straight patches only (Patch::straight).
 ConeHullResult cone_hull_distance(const Patch& A, const Patch& B);
 
+// A lower bound on the distance between any two patches without iteration to
+// convergence: every point of a toroidal patch of at most a half turn lies
+// within its arc's sagitta of its chord's cone, at the same azimuth, so both
+// patches lie within their sagittas of their end circles' hulls (solid
+// frusta), and the support bound along any direction holds for the hulls
+// (see cone_hull_distance). The directions tried: `dir` (from B towards A;
+// a query's witness direction suits patches near its contact) and `steps`
+// more, each the difference of the last supports. -inf when an arc turns
+// more than a half turn; <= 0 or negative when the hulls may meet.
+double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps);
+
 }  // namespace revdist

@@ -30,6 +30,7 @@
 #include "fast/biarc_fit.h"
 #include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
+#include "fast/cone_hull.h"
 #include "fast/patch.h"
 #include "fast/patch_distance.h"
 #include "fast/profile_side.h"
@@ -699,7 +700,22 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             continue;
           }
         }
-        // The cheap look next: most pairs end here. Told what settles the
+        // The hulls of the patches' chord cones next (less the arcs'
+        // sagittas), along the witness's direction: two support values, where
+        // the bounding tori of a short arc or segment are fat, the quick
+        // look's circle solves bound only those tori, the spine bound ignores
+        // the arc's window, and the local proof needs ~20 boxes for pairs
+        // hundreds of tol clear of the cut. Measured on the motion probe at
+        // eps 1e-5: 23 arc pairs a query end here, 371 -> 281 M instructions
+        // (-18 % placed after the quick look; supports refined once or more
+        // from the witness direction settle no more pairs).
+        if (const double hull = patch_hull_bound(P, Q, res.point_a - res.point_b, 0);
+            hull - fa.eps - fb.eps - round >= cut()) {
+          ++st.hull_pairs;
+          settle(hull);
+          continue;
+        }
+        // The cheap look next (its exact case also offers a witness). Told what settles the
         // pair and where the witness is, it skips the circle solves that
         // provably cannot settle it (two thirds of them at eps 1e-5).
         const QuickGoal goal{fits_cut(), res.point_a};

@@ -154,6 +154,14 @@ MUTANTS = [
      "const double h = 0.5 * d * std::max(",
      "const double h = 0.25 * d * std::max(",
      "a flat span's chord fit claims half the lens's height over the chord"),
+    ("hull_no_sagitta", "fast/cone_hull.cpp",
+     "  return best - sa - sb;",
+     "  return best;",
+     "the hull bound of toroidal patches leaves their arcs' sagittas on"),
+    ("hull_half_sagitta", "fast/cone_hull.cpp",
+     "return 2 * P.rho * s * s * (1 + 8 * kEps);",
+     "return P.rho * s * s * (1 + 8 * kEps);",
+     "the hull bound takes half an arc's sagitta off"),
 ]
 
 

@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "compare/stress.h"
 #include "core/case_io.h"
@@ -135,6 +137,67 @@ TEST(ConeHull, NeverAboveAGenuinePair) {
   }
   std::printf("[ stats    ] %d of 300 pairs proven apart by their hulls\n", proven);
   EXPECT_GE(proven, 100);  // every side-by-side pair at least
+}
+
+// patch_hull_bound on random toroidal and conical patches (arcs up to a
+// half turn, either side bulging towards the other patch) near each other:
+// along any direction it never exceeds a genuine pair's distance (the best
+// of a sample grid, descended to a local minimum of both patches), and along
+// the sampled closest pair's direction it proves most pairs side by side
+// apart, often to within a tenth of their distance.
+TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
+  std::mt19937_64 g(test_seed(7));
+  std::uniform_real_distribution<double> u(0, 1);
+  auto random_arc = [&](bool straight) {
+    Arc2 a;
+    a.start = Vec2(0.2 + u(g), u(g) - 0.5);
+    const double phi = 2 * M_PI * u(g);
+    a.tangent = Vec2(std::cos(phi), std::sin(phi));
+    a.curvature = straight ? 0.0 : (u(g) < 0.5 ? -1 : 1) * (0.5 + 4.5 * u(g));
+    a.length = straight ? 0.05 + 0.5 * u(g) : (0.02 + 0.98 * u(g)) * M_PI / std::abs(a.curvature);
+    // Keep the arc off the axis (r >= 0 throughout): shift it out.
+    double rmin = a.start.x();
+    for (int k = 1; k <= 32; ++k) rmin = std::min(rmin, a.point(a.length * k / 32).x());
+    if (rmin < 0.05) a.start.x() += 0.05 - rmin;
+    return a;
+  };
+  int proven = 0, tight = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Patch A = make_patch(random_arc(trial % 3 == 0), Mat3::Identity(), Vec3::Zero());
+    const Mat3 R = rotation(2 * M_PI * u(g), Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5));
+    const Vec3 t = 2.5 * Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+    const Patch B = make_patch(random_arc(trial % 3 == 1), R, t);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    // The closest pair of a grid, descended: genuine points of both patches.
+    constexpr int kU = 12, kT = 32;
+    double best = std::numeric_limits<double>::infinity();
+    Vec2 start;
+    std::vector<Vec3> pb;
+    for (int k = 0; k < kU; ++k)
+      for (int l = 0; l < kT; ++l) pb.push_back(patch_point(B, double(k) / (kU - 1), 2 * M_PI * l / kT));
+    for (int i = 0; i < kU; ++i)
+      for (int j = 0; j < kT; ++j) {
+        const Vec3 x = patch_point(A, double(i) / (kU - 1), 2 * M_PI * j / kT);
+        for (const Vec3& y : pb)
+          if ((x - y).norm() < best) best = (x - y).norm(), start = Vec2(double(i) / (kU - 1), 2 * M_PI * j / kT);
+      }
+    Vec3 x, y;
+    const double genuine = std::min(best, patch_pair_descent(A, B, start, 1e-12, &x, &y));
+    // Coordinates within ~3 of the origin: 256 ulps of them.
+    const double allow = 256 * kE * 4;
+    for (int d = 0; d < 6; ++d) {
+      const Vec3 dir = d == 0 ? Vec3(x - y) : Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+      for (int steps : {0, 2}) EXPECT_LE(patch_hull_bound(A, B, dir, steps), genuine + allow) << "direction " << d;
+    }
+    const double along = patch_hull_bound(A, B, x - y, 1);
+    proven += along > 0;
+    tight += along >= 0.9 * genuine;
+  }
+  std::printf("[ stats    ] of 300 pairs: %d proven apart along the closest pair's direction, %d to 10 %%\n", proven,
+              tight);
+  // Measured at the default seed: 115 and 34 (other seeds vary).
+  EXPECT_GE(proven, 80);
+  EXPECT_GE(tight, 20);
 }
 
 // The regression: cans 5.6e-5 rad from parallel needed minutes (every patch
