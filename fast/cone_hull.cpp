@@ -32,15 +32,20 @@ struct Frustum {
   Vec3 a;
 };
 
-Frustum frustum(const Patch& P, const Vec3& shift) {
+// The hull of segment p0 p1 revolved about the axis through o along unit a:
+// the circles of its ends (radius |r|: a segment that crosses the axis
+// revolves into two cones, still inside the hull of its end circles, since
+// |(1 - t) r0 + t r1| <= (1 - t) |r0| + t |r1|).
+Frustum frustum(const Vec3& o, const Vec3& a, const Vec2& p0, const Vec2& p1, const Vec3& shift) {
   Frustum f;
-  f.c[0] = (P.o - shift) + P.p0.y() * P.a;
-  f.c[1] = (P.o - shift) + P.p1.y() * P.a;
-  f.r[0] = P.p0.x();
-  f.r[1] = P.p1.x();
-  f.a = P.a;
+  f.c[0] = (o - shift) + p0.y() * a;
+  f.c[1] = (o - shift) + p1.y() * a;
+  f.r[0] = std::abs(p0.x());
+  f.r[1] = std::abs(p1.x());
+  f.a = a;
   return f;
 }
+Frustum frustum(const Patch& P, const Vec3& shift) { return frustum(P.o, P.a, P.p0, P.p1, shift); }
 
 // Support value of F in direction u, and the supporting point when p is given.
 double support(const Frustum& f, const Vec3& u, Vec3* p = nullptr) {
@@ -266,21 +271,11 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
   return res;
 }
 
-double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
+double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
   constexpr double kNone = -std::numeric_limits<double>::infinity();
-  // How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
-  // = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
-  // foot on the chord's line then lies on the chord).
-  auto sag = [](const Patch& P) {
-    if (P.straight) return 0.0;
-    if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
-    const double s = std::sin(0.25 * std::abs(P.sweep));
-    return 2 * P.rho * s * s * (1 + 8 * kEps);
-  };
-  const double sa = sag(A), sb = sag(B);
-  if (!std::isfinite(sa + sb) || !(dir.squaredNorm() > 0)) return kNone;
+  if (!(dir.squaredNorm() > 0)) return kNone;
   const Vec3 shift = A.o + 0.5 * (A.p0.y() + A.p1.y()) * A.a;
-  const Frustum fa = frustum(A, shift), fb = frustum(B, shift);
+  const Frustum fa = frustum(A.o, A.a, A.p0, A.p1, shift), fb = frustum(B.o, B.a, B.p0, B.p1, shift);
   double size = 0;
   for (const Frustum* f : {&fa, &fb})
     for (int i = 0; i < 2; ++i) size = std::max(size, f->c[i].cwiseAbs().maxCoeff() + f->r[i]);
@@ -300,6 +295,22 @@ double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int ste
     if (!(next.squaredNorm() > 0)) break;
     u = next;
   }
+  return best;
+}
+
+double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
+  // How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
+  // = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
+  // foot on the chord's line then lies on the chord).
+  auto sag = [](const Patch& P) {
+    if (P.straight) return 0.0;
+    if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
+    const double s = std::sin(0.25 * std::abs(P.sweep));
+    return 2 * P.rho * s * s * (1 + 8 * kEps);
+  };
+  const double sa = sag(A), sb = sag(B);
+  if (!std::isfinite(sa + sb)) return -std::numeric_limits<double>::infinity();
+  const double best = revolved_hull_bound({A.o, A.a, A.p0, A.p1}, {B.o, B.a, B.p0, B.p1}, dir, steps);
   return best - sa - sb;
 }
 

@@ -25,6 +25,19 @@ struct ConeHullResult {
 // Straight patches only (Patch::straight).
 ConeHullResult cone_hull_distance(const Patch& A, const Patch& B);
 
+// A segment p0 p1 of a meridian half-plane (r, z) revolved about the axis
+// through o along unit a.
+struct RevolvedSegment {
+  Vec3 o, a;
+  Vec2 p0, p1;
+};
+
+// A lower bound on the distance between the hulls of two revolved segments
+// (solid frusta of their end circles, radii |r|): the support bound along
+// `dir` (from B towards A) and `steps` more directions, each the difference
+// of the last supports (rounding included; <= 0 when the hulls may meet).
+double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps);
+
 // A lower bound on the distance between any two patches without iteration to
 // convergence: every point of a toroidal patch of at most a half turn lies
 // within its arc's sagitta of its chord's cone, at the same azimuth, so both

@@ -46,6 +46,7 @@ struct DistanceOptions {
 
 struct DistanceStats {
   long node_pairs = 0;   // pairs popped from the queue and processed (descended or compared)
+  long hull_parts = 0;   // popped pairs retired by their capsules' hulls (revolved_hull_bound), before splitting or a tight bound
   long bounds = 0;       // tight bounds computed for pairs of fits (pairs are queued with a closed-form one)
   long leaf_pairs = 0;   // pairs of fits whose patches were compared
   long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h): the local proof's fallbacks

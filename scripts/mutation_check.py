@@ -162,6 +162,14 @@ MUTANTS = [
      "return 2 * P.rho * s * s * (1 + 8 * kEps);",
      "return P.rho * s * s * (1 + 8 * kEps);",
      "the hull bound takes half an arc's sagitta off"),
+    ("hull_r_clamped", "fast/cone_hull.cpp",
+     "  f.r[0] = std::abs(p0.x());",
+     "  f.r[0] = std::max(p0.x(), 0.0);",
+     "a revolved segment's hull drops the circle of an end beyond the axis"),
+    ("node_hull_no_caps", "fast/solid_distance.cpp",
+     "- ha.cap_r -\n                        hb.cap_r - round;",
+     "-\n                        round;",
+     "two parts' hull bound leaves their capsules' radii on"),
 ]
 
 
