@@ -273,27 +273,40 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
 
 double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
   constexpr double kNone = -std::numeric_limits<double>::infinity();
-  if (!(dir.squaredNorm() > 0)) return kNone;
-  const Vec3 shift = A.o + 0.5 * (A.p0.y() + A.p1.y()) * A.a;
-  const Frustum fa = frustum(A.o, A.a, A.p0, A.p1, shift), fb = frustum(B.o, B.a, B.p0, B.p1, shift);
-  double size = 0;
-  for (const Frustum* f : {&fa, &fb})
-    for (int i = 0; i < 2; ++i) size = std::max(size, f->c[i].cwiseAbs().maxCoeff() + f->r[i]);
-  const double coord = std::max({A.o.cwiseAbs().maxCoeff(), B.o.cwiseAbs().maxCoeff(), shift.cwiseAbs().maxCoeff(),
-                                 std::abs(A.p0.y()), std::abs(A.p1.y()), std::abs(B.p0.y()), std::abs(B.p1.y())});
+  // In coordinates from A's axis origin: A's end circles have centres
+  // z A.a and radii |r|, B's centres d + z B.a. Scalars throughout (this
+  // runs at every popped pair of a query).
+  const Vec3 d = B.o - A.o;
+  const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
+  const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
+  const double dmax = d.cwiseAbs().maxCoeff();
+  // Rounding as in cone_hull_distance: 32 eps |u|_1 (size + coord), size the
+  // largest |centre| + r (centres from A's origin), coord the inputs'.
+  const double size = std::max({std::abs(za[0]) + ra[0], std::abs(za[1]) + ra[1], dmax + std::abs(zb[0]) + rb[0],
+                                dmax + std::abs(zb[1]) + rb[1]});
+  const double coord = std::max({A.o.cwiseAbs().maxCoeff(), B.o.cwiseAbs().maxCoeff(), std::abs(za[0]),
+                                 std::abs(za[1]), std::abs(zb[0]), std::abs(zb[1])});
   double best = kNone;
   Vec3 u = dir;
   for (int k = 0; k <= steps; ++k) {
-    Vec3 pa, pb;
-    const double g = -support(fa, -u, &pa) - support(fb, u, &pb);
-    // Rounding as in cone_hull_distance.
+    const double uu = u.squaredNorm();
+    if (!(uu > 0)) break;
+    const double ua = u.dot(A.a), ub = u.dot(B.a);
+    const double na = std::sqrt(std::max(0.0, uu - ua * ua)), nb = std::sqrt(std::max(0.0, uu - ub * ub));
+    // h_A(-u) = max_i (-u . c_i + r_i |u_perp|), h_B(u) = u . d + max_j (u . B.a z_j + r_j |u_perp|).
+    const double ha0 = -ua * za[0] + ra[0] * na, ha1 = -ua * za[1] + ra[1] * na;
+    const double hb0 = ub * zb[0] + rb[0] * nb, hb1 = ub * zb[1] + rb[1] * nb;
+    const int ia = ha0 >= ha1 ? 0 : 1, ib = hb0 >= hb1 ? 0 : 1;
+    const double g = -(ia == 0 ? ha0 : ha1) - u.dot(d) - (ib == 0 ? hb0 : hb1);
     const double err = 32 * kEps * u.lpNorm<1>() * (size + coord);
-    best = std::max(best, (g - err) / (u.norm() * (1 + 4 * kEps)));
+    best = std::max(best, (g - err) / (std::sqrt(uu) * (1 + 4 * kEps)));
+    if (k == steps) break;
     // The support points' difference: the next direction (a step of
-    // Gilbert's iteration without its simplex).
-    const Vec3 next = pa - pb;
-    if (!(next.squaredNorm() > 0)) break;
-    u = next;
+    // Gilbert's iteration without its simplex). Any rim point supports
+    // along an axis.
+    const Vec3 ea = na > 0 ? Vec3(-(u - ua * A.a) / na) : Vec3::Zero();
+    const Vec3 eb = nb > 0 ? Vec3((u - ub * B.a) / nb) : Vec3::Zero();
+    u = (za[ia] * A.a + ra[ia] * ea) - (d + zb[ib] * B.a + rb[ib] * eb);
   }
   return best;
 }
