@@ -292,7 +292,12 @@ double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, c
     const double uu = u.squaredNorm();
     if (!(uu > 0)) break;
     const double ua = u.dot(A.a), ub = u.dot(B.a);
-    const double na = std::sqrt(std::max(0.0, uu - ua * ua)), nb = std::sqrt(std::max(0.0, uu - ub * ub));
+    // |u_perp| from the vector, not sqrt(uu - ua^2): along an axis (flat
+    // faces facing each other) that difference cancels to sqrt(eps) |u|,
+    // which the radius multiplies (a stress near_parallel_planes case put
+    // the bound 1.9e-10 above the distance).
+    const Vec3 pa = u - ua * A.a, pb = u - ub * B.a;
+    const double na = pa.norm(), nb = pb.norm();
     // h_A(-u) = max_i (-u . c_i + r_i |u_perp|), h_B(u) = u . d + max_j (u . B.a z_j + r_j |u_perp|).
     const double ha0 = -ua * za[0] + ra[0] * na, ha1 = -ua * za[1] + ra[1] * na;
     const double hb0 = ub * zb[0] + rb[0] * nb, hb1 = ub * zb[1] + rb[1] * nb;
@@ -304,8 +309,8 @@ double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, c
     // The support points' difference: the next direction (a step of
     // Gilbert's iteration without its simplex). Any rim point supports
     // along an axis.
-    const Vec3 ea = na > 0 ? Vec3(-(u - ua * A.a) / na) : Vec3::Zero();
-    const Vec3 eb = nb > 0 ? Vec3((u - ub * B.a) / nb) : Vec3::Zero();
+    const Vec3 ea = na > 0 ? Vec3(-pa / na) : Vec3::Zero();
+    const Vec3 eb = nb > 0 ? Vec3(pb / nb) : Vec3::Zero();
     u = (za[ia] * A.a + ra[ia] * ea) - (d + zb[ib] * B.a + rb[ib] * eb);
   }
   return best;

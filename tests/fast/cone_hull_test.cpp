@@ -249,6 +249,34 @@ TEST(RevolvedHullBound, NeverAboveSampledPairs) {
   EXPECT_GE(proven, 100);
 }
 
+// Flat faces facing each other along their common axis, gap 1e-9..1e-3, the
+// direction along the axis to within 1e-12..1e-6 and tiny: the bound never
+// exceeds the gap (the stress near_parallel_planes regression: |u_perp|
+// taken as sqrt(|u|^2 - (u . a)^2) lost sqrt(eps) of |u|, times the radius),
+// and it is the gap to within a few ulps of the radius.
+TEST(RevolvedHullBound, FlatFacesAlongTheAxis) {
+  std::mt19937_64 g(test_seed(9));
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = 0.1 + u(g), gap = std::pow(10.0, -9 + 6 * u(g));
+    const Vec3 axis = Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5).normalized();
+    const Vec3 o = Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+    // B's face is A's, lifted by the gap and shifted sideways (still overlapping).
+    const Vec3 side = 0.3 * r * u(g) * axis.unitOrthogonal();
+    const RevolvedSegment A{o, axis, Vec2(0, 0), Vec2(r, 0)};
+    const RevolvedSegment B{o + gap * axis + side, axis, Vec2(0, 0), Vec2(r, 0)};
+    const Vec3 tilt = std::pow(10.0, -12 + 6 * u(g)) * Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+    const Vec3 dir = std::pow(10.0, -12 + 10 * u(g)) * (-axis + tilt);  // from B towards A
+    SCOPED_TRACE("trial " + std::to_string(trial) + " gap " + std::to_string(gap));
+    const double allow = 64 * kE * 2;
+    for (int steps : {0, 1}) {
+      const double b = revolved_hull_bound(A, B, dir, steps);
+      EXPECT_LE(b, gap + allow);
+      EXPECT_GE(b, gap - 2e-6 * r - allow);  // the tilt costs at most |tilt| r on each face
+    }
+  }
+}
+
 // The regression: cans 5.6e-5 rad from parallel needed minutes (every patch
 // pair's normal system overflowed, no pair was ever proven apart). With a
 // budget of 20,000 node pairs the old engine ends unconverged; measured now:
