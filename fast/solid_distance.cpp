@@ -814,7 +814,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               // The spine bounds at the new cut first: the pair's own
               // minimum is near it, where the boxes cost the most.
-              proven = by_spine = spine_proof(cut2, &local);
+              // (And the hulls along the pair's own closest direction, x - y:
+              // exact for cones side by side.)
+              if (const double hull = patch_hull_bound(P, Q, p_small ? Vec3(x - y) : Vec3(y - x), 0); hull >= cut2) {
+                proven = true;
+                local = hull;
+              }
+              if (!proven) proven = by_spine = spine_proof(cut2, &local);
               if (!proven) {
                 proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals);
                 st.local_boxes += evals;
