@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
       sum.patch_pairs += r.stats.patch_pairs, sum.quick_pairs += r.stats.quick_pairs, sum.refined += r.stats.refined;
       sum.local_pairs += r.stats.local_pairs, sum.local_boxes += r.stats.local_boxes;
       sum.spine_pairs += r.stats.spine_pairs, sum.spine_evals += r.stats.spine_evals;
-      sum.hull_pairs += r.stats.hull_pairs;
+      sum.hull_pairs += r.stats.hull_pairs, sum.hull_parts += r.stats.hull_parts;
     }
   DistanceStats sel;
   if (sel_lo >= 0) {
@@ -182,6 +182,7 @@ int main(int argc, char** argv) {
            for (double u : us) s += u;
            return s / n;
          }(), over_us.size(), nearest_rank_percentile(over_us, 0.5), nearest_rank_percentile(over_us, 0.99));
+  printf("per query: popped pairs retired by their capsules' hulls %.1f\n", sum.hull_parts / n);
   printf("per query: node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f hull %.1f spine %.1f (points %.1f) local %.1f (boxes %.1f) refined %.1f; overlaps %d unconverged %d\n",
          sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
          sum.hull_pairs / n, sum.spine_pairs / n, sum.spine_evals / n, sum.local_pairs / n, sum.local_boxes / n, sum.refined / n, overlaps,
