@@ -139,6 +139,17 @@ TEST(ConeHull, NeverAboveAGenuinePair) {
   EXPECT_GE(proven, 100);  // every side-by-side pair at least
 }
 
+// A hull bound along the closest pair's direction and five random ones, with
+// 0 and 2 refining steps, never above `limit` (a genuine pair's distance).
+template <class Bound>
+void expect_never_above(Bound bound, const Vec3& closest, double limit, std::mt19937_64& g) {
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int d = 0; d < 6; ++d) {
+    const Vec3 dir = d == 0 ? closest : Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+    for (int steps : {0, 2}) EXPECT_LE(bound(dir, steps), limit) << "direction " << d << ", steps " << steps;
+  }
+}
+
 // patch_hull_bound on random toroidal and conical patches (arcs up to a
 // half turn, either side bulging towards the other patch) near each other:
 // along any direction it never exceeds a genuine pair's distance (the best
@@ -185,10 +196,8 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
     const double genuine = std::min(best, patch_pair_descent(A, B, start, 1e-12, &x, &y));
     // Coordinates within ~3 of the origin: 256 ulps of them.
     const double allow = 256 * kE * 4;
-    for (int d = 0; d < 6; ++d) {
-      const Vec3 dir = d == 0 ? Vec3(x - y) : Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
-      for (int steps : {0, 2}) EXPECT_LE(patch_hull_bound(A, B, dir, steps), genuine + allow) << "direction " << d;
-    }
+    expect_never_above([&](const Vec3& dir, int steps) { return patch_hull_bound(A, B, dir, steps); }, x - y,
+                       genuine + allow, g);
     const double along = patch_hull_bound(A, B, x - y, 1);
     proven += along > 0;
     tight += along >= 0.9 * genuine;
@@ -237,10 +246,8 @@ TEST(RevolvedHullBound, NeverAboveSampledPairs) {
       }
     SCOPED_TRACE("trial " + std::to_string(trial));
     const double allow = 256 * kE * 4;
-    for (int d = 0; d < 6; ++d) {
-      const Vec3 dir = d == 0 ? Vec3(bx - by) : Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
-      for (int steps : {0, 2}) EXPECT_LE(revolved_hull_bound(A, B, dir, steps), best + allow) << "direction " << d;
-    }
+    expect_never_above([&](const Vec3& dir, int steps) { return revolved_hull_bound(A, B, dir, steps); }, bx - by,
+                       best + allow, g);
     proven += revolved_hull_bound(A, B, bx - by, 0) > 0;
   }
   std::printf("[ stats    ] of 300 pairs (%d crossing their axis): %d proven apart along the closest pair\n", crossing,
