@@ -284,6 +284,32 @@ TEST(RevolvedHullBound, FlatFacesAlongTheAxis) {
   }
 }
 
+// Any positive multiple of a direction gives the same bound, also one that
+// squares into the subnormals (a witness pair 1e-160 apart) or overflows.
+TEST(RevolvedHullBound, ScaleOfTheDirection) {
+  std::mt19937_64 g(test_seed(10));
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 100; ++trial) {
+    const RevolvedSegment A{Vec3::Zero(), Vec3::UnitZ(), Vec2(0.5 * u(g), u(g)), Vec2(0.5 * u(g), 1 + u(g))};
+    const Vec3 b_axis = Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5).normalized();
+    const RevolvedSegment B{Vec3(2 + u(g), u(g), u(g)), b_axis, Vec2(0.3 * u(g), -u(g)), Vec2(0.3 * u(g), u(g))};
+    // Components with a largest magnitude in [0.5, 1): the scaled ones map back exactly.
+    const Vec3 d = Vec3(-0.5 - 0.49 * u(g), 0.4 * (u(g) - 0.5), 0.4 * (u(g) - 0.5));
+    const double ref = revolved_hull_bound(A, B, d, 0);
+    ASSERT_TRUE(std::isfinite(ref));
+    for (int e : {-1070, -600, -520, 520, 600, 1000}) {
+      const Vec3 s(std::ldexp(d.x(), e), std::ldexp(d.y(), e), std::ldexp(d.z(), e));
+      // The direction s represents (exact: at 2^-1070 the subnormals keep
+      // only some of d's digits, a nearby direction).
+      const Vec3 back(std::ldexp(s.x(), -e), std::ldexp(s.y(), -e), std::ldexp(s.z(), -e));
+      EXPECT_EQ(revolved_hull_bound(A, B, s, 0), revolved_hull_bound(A, B, back, 0)) << "2^" << e;
+      if (e > -1060) { EXPECT_EQ(revolved_hull_bound(A, B, s, 0), ref) << "2^" << e; }
+    }
+    // A plain multiple (not a power of two) agrees to rounding.
+    EXPECT_NEAR(revolved_hull_bound(A, B, 1e-160 * d, 0), ref, 1e-14);
+  }
+}
+
 // The regression: cans 5.6e-5 rad from parallel needed minutes (every patch
 // pair's normal system overflowed, no pair was ever proven apart). With a
 // budget of 20,000 node pairs the old engine ends unconverged; measured now:
