@@ -24,9 +24,9 @@
 // it. Parts of a profile no query reaches are never fitted: a deformable solid
 // at a new time costs what its queries touch, not a whole rebuild.
 #pragma once
-#include <limits>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/arc2.h"

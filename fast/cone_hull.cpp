@@ -32,20 +32,15 @@ struct Frustum {
   Vec3 a;
 };
 
-// The hull of segment p0 p1 revolved about the axis through o along unit a:
-// the circles of its ends (radius |r|: a segment that crosses the axis
-// revolves into two cones, still inside the hull of its end circles, since
-// |(1 - t) r0 + t r1| <= (1 - t) |r0| + t |r1|).
-Frustum frustum(const Vec3& o, const Vec3& a, const Vec2& p0, const Vec2& p1, const Vec3& shift) {
+Frustum frustum(const Patch& P, const Vec3& shift) {
   Frustum f;
-  f.c[0] = (o - shift) + p0.y() * a;
-  f.c[1] = (o - shift) + p1.y() * a;
-  f.r[0] = std::abs(p0.x());
-  f.r[1] = std::abs(p1.x());
-  f.a = a;
+  f.c[0] = (P.o - shift) + P.p0.y() * P.a;
+  f.c[1] = (P.o - shift) + P.p1.y() * P.a;
+  f.r[0] = P.p0.x();
+  f.r[1] = P.p1.x();
+  f.a = P.a;
   return f;
 }
-Frustum frustum(const Patch& P, const Vec3& shift) { return frustum(P.o, P.a, P.p0, P.p1, shift); }
 
 // Support value of F in direction u, and the supporting point when p is given.
 double support(const Frustum& f, const Vec3& u, Vec3* p = nullptr) {

@@ -86,16 +86,22 @@ struct Solid {
     place(parts.back());
   }
 
+  // A part's capsule (segment a b, radius r) and the disk that holds it,
+  // kept beside it for the closed-form bounds at every push.
+  static void set_capsule(Part& p, const Vec2& a, const Vec2& b, double r) {
+    p.seg_a = a;
+    p.seg_b = b;
+    p.cap_r = r;
+    p.disk_c = 0.5 * (a + b);
+    p.disk_r = 0.5 * (b - a).norm() + r;
+  }
+
   Part from_node(std::int32_t node, int level) const {
     const BiarcNode& n = tree.node(node);
     Part p;
     p.node = node;
     p.level = level;
-    p.disk_c = 0.5 * (n.seg_a + n.seg_b);
-    p.disk_r = 0.5 * (n.seg_b - n.seg_a).norm() + n.radius;
-    p.seg_a = n.seg_a;
-    p.seg_b = n.seg_b;
-    p.cap_r = n.radius;
+    set_capsule(p, n.seg_a, n.seg_b, n.radius);
     if (n.fit >= 0) {
       p.has_fit = n.leaf();
       p.fit = tree.fit(n.fit);
@@ -171,11 +177,7 @@ struct Solid {
         cap = lens_capsule(*ends[h], lens_bound(*ends[h]));
         cap.radius += slack;
       }
-      c.disk_c = 0.5 * (cap.a + cap.b);
-      c.disk_r = 0.5 * (cap.b - cap.a).norm() + cap.radius;
-      c.seg_a = cap.a;
-      c.seg_b = cap.b;
-      c.cap_r = cap.radius;
+      set_capsule(c, cap.a, cap.b, cap.radius);
     }
   }
 

@@ -80,7 +80,7 @@ MUTANTS = [
      "const int i = h0 >= h1 ? 0 : 1;", "const int i = h0 >= h1 ? 1 : 0;",
      "cone hull bound: the support of a frustum taken at its lower end circle"),
     ("hull_thin_frustum", "fast/cone_hull.cpp",
-     "f.r[0] = std::abs(p0.x());", "f.r[0] = 0.5 * std::abs(p0.x());",
+     "f.r[0] = P.p0.x();", "f.r[0] = 0.5 * P.p0.x();",
      "cone hull bound: the frustum's first end circle shrunk (the hull misses part of the patch)"),
     ("kernel_budget_ignored", "fast/solid_distance.cpp",
      "const bool out_of_kernels = st.patch_pairs >= opt.max_patch_pairs;", "const bool out_of_kernels = false;",
