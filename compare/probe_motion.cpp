@@ -5,7 +5,9 @@
 // compare the brackets (they must intersect) between builds.
 // Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
 //                             [--save FILE] [--check FILE] [--repeat K]
-//                             [--select LO,HI] [--coherent]
+//                             [--select LO,HI] [--coherent] [--worst K]
+// --worst K lists the K slowest queries (frame, pair, target distance, time,
+// bracket and work counters): where the tail comes from.
 // --coherent starts each query from the previous frame's answer of the same
 // pair (WarmStart, frame coherence).
 // --select re-runs the queries whose time ranks between quantiles LO and HI
@@ -53,7 +55,7 @@ struct Bracket {
 
 int main(int argc, char** argv) {
   double eps = 1e-5, tol = -1;
-  int frames = 40, repeat = 1;
+  int frames = 40, repeat = 1, worst = 0;
   bool coherent = false;
   double sel_lo = -1, sel_hi = -1;
   std::string poses_file = "/tmp/revdist_motion_poses.bin", save, check;
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
     else if (a == "--check") check = v, ++i;
     else if (a == "--repeat") repeat = atoi(v), ++i;
     else if (a == "--coherent") coherent = true;
+    else if (a == "--worst") worst = atoi(v), ++i;
     else if (a == "--select") {
       if (sscanf(v, "%lf,%lf", &sel_lo, &sel_hi) != 2) return 2;
       ++i;
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
   o.tol = tol;
   std::vector<double> us, over_us;
   std::vector<Bracket> got;
+  std::vector<SolidDistanceResult> results;  // first repetition (--worst)
   DistanceStats sum;
   int overlaps = 0, unconverged = 0;
   std::vector<WarmStart> warms(poses.size());  // each frame's warm start (--coherent)
@@ -138,6 +142,7 @@ int main(int argc, char** argv) {
       us.push_back(dt);
       if (p.target < 0) over_us.push_back(dt);
       got.push_back({r.lower, r.upper});
+      if (worst > 0) results.push_back(r);
       if (getenv("PROBE_FINE") && p.target < 0 && !r.overlap) {
         DistanceOptions f = o;
         f.tol = 1e-10;
@@ -187,6 +192,21 @@ int main(int argc, char** argv) {
          sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
          sum.hull_pairs / n, sum.spine_pairs / n, sum.spine_evals / n, sum.local_pairs / n, sum.local_boxes / n, sum.refined / n, overlaps,
          unconverged);
+  if (worst > 0) {
+    std::vector<std::size_t> order(us.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return us[x] > us[y]; });
+    for (std::size_t k = 0; k < std::min<std::size_t>(worst, order.size()); ++k) {
+      const std::size_t i = order[k];
+      const SolidDistanceResult& r = results[i];
+      const DistanceStats& s = r.stats;
+      printf("frame %zu pair %d-%d target %.2e: %.1f us [%.6e, %.6e]%s node %ld bounds %ld leaf %ld patch %ld local %ld "
+             "(boxes %ld) spine %ld hull %ld refined %ld %s\n",
+             i, poses[i].a, poses[i].b, poses[i].target, us[i], r.lower, r.upper, r.overlap ? " overlap" : "",
+             (long)s.node_pairs, (long)s.bounds, (long)s.leaf_pairs, (long)s.patch_pairs, (long)s.local_pairs,
+             (long)s.local_boxes, (long)s.spine_pairs, (long)s.hull_pairs, (long)s.refined, r.reason.c_str());
+    }
+  }
   if (!save.empty())
     if (FILE* f = fopen(save.c_str(), "wb")) {
       fwrite(got.data(), sizeof(Bracket), got.size(), f);

@@ -266,77 +266,107 @@ ConeHullResult cone_hull_distance(const Patch& A, const Patch& B) {
   return res;
 }
 
-double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
-  constexpr double kNone = -std::numeric_limits<double>::infinity();
-  // In coordinates from A's axis origin: A's end circles have centres
-  // z A.a and radii |r|, B's centres d + z B.a. Scalars throughout (this
-  // runs at every popped pair of a query).
-  const Vec3 d = B.o - A.o;
-  const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
-  const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
-  const double dmax = d.cwiseAbs().maxCoeff();
+RevolvedHullDirection::RevolvedHullDirection(const Vec3& oa, const Vec3& a, const Vec3& ob, const Vec3& b,
+                                             const Vec3& dir)
+    : dir_(dir), u_(dir) {
+  // A direction from a pair of points 1e-160 apart would square into the
+  // subnormals, where |u| keeps a few digits: such a u (or a huge one) is
+  // first scaled by a power of two (exact: the bound is the same for any
+  // positive multiple of u).
+  double uu = u_.squaredNorm();
+  if (!(uu >= 0x1p-800 && uu <= 0x1p800)) {
+    const double m = u_.cwiseAbs().maxCoeff();
+    if (!(m > 0) || !std::isfinite(m)) {
+      none_ = true;
+      return;
+    }
+    int e = 0;
+    std::frexp(m, &e);
+    u_ = Vec3(std::ldexp(u_.x(), -e), std::ldexp(u_.y(), -e), std::ldexp(u_.z(), -e));
+    uu = u_.squaredNorm();
+  }
+  // In coordinates from A's axis origin: A's end circles have centres z a
+  // and radii |r|, B's centres d + z b, d = ob - oa.
+  const Vec3 d = ob - oa;
+  ua_ = u_.dot(a), ub_ = u_.dot(b);
+  // |u_perp| from the vector, not sqrt(uu - ua^2): along an axis (flat
+  // faces facing each other) that difference cancels to sqrt(eps) |u|,
+  // which the radius multiplies (a stress near_parallel_planes case put
+  // the bound 1.9e-10 above the distance).
+  pa_ = u_ - ua_ * a, pb_ = u_ - ub_ * b;
+  na_ = pa_.norm(), nb_ = pb_.norm();
+  ud_ = u_.dot(d);
+  dmax_ = d.cwiseAbs().maxCoeff();
+  ocoord_ = std::max(oa.cwiseAbs().maxCoeff(), ob.cwiseAbs().maxCoeff());
+  l1_ = u_.lpNorm<1>();
+  scale_ = std::sqrt(uu) * (1 + 4 * kEps);
+}
+
+double RevolvedHullDirection::operator()(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) const {
+  if (none_) return -std::numeric_limits<double>::infinity();
+  const double za[2] = {a0.y(), a1.y()}, ra[2] = {std::abs(a0.x()), std::abs(a1.x())};
+  const double zb[2] = {b0.y(), b1.y()}, rb[2] = {std::abs(b0.x()), std::abs(b1.x())};
   // Rounding as in cone_hull_distance: 32 eps |u|_1 (size + coord), size the
   // largest |centre| + r (centres from A's origin), coord the inputs'.
-  const double size = std::max({std::abs(za[0]) + ra[0], std::abs(za[1]) + ra[1], dmax + std::abs(zb[0]) + rb[0],
-                                dmax + std::abs(zb[1]) + rb[1]});
-  const double coord = std::max({A.o.cwiseAbs().maxCoeff(), B.o.cwiseAbs().maxCoeff(), std::abs(za[0]),
-                                 std::abs(za[1]), std::abs(zb[0]), std::abs(zb[1])});
-  double best = kNone;
+  const double size = std::max({std::abs(za[0]) + ra[0], std::abs(za[1]) + ra[1], dmax_ + std::abs(zb[0]) + rb[0],
+                                dmax_ + std::abs(zb[1]) + rb[1]});
+  const double coord =
+      std::max({ocoord_, std::abs(za[0]), std::abs(za[1]), std::abs(zb[0]), std::abs(zb[1])});
+  // h_A(-u) = max_i (-u . c_i + r_i |u_perp|), h_B(u) = u . d + max_j (u . b z_j + r_j |u_perp|).
+  const double ha = std::max(-ua_ * za[0] + ra[0] * na_, -ua_ * za[1] + ra[1] * na_);
+  const double hb = std::max(ub_ * zb[0] + rb[0] * nb_, ub_ * zb[1] + rb[1] * nb_);
+  const double g = -ha - ud_ - hb;
+  const double err = 32 * kEps * l1_ * (size + coord);
+  return (g - err) / scale_;
+}
+
+double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
+  double best = -std::numeric_limits<double>::infinity();
   Vec3 u = dir;
   for (int k = 0; k <= steps; ++k) {
-    // A direction from a pair of points 1e-160 apart would square into the
-    // subnormals, where |u| keeps a few digits: such a u (or a huge one) is
-    // first scaled by a power of two (exact: the bound is the same for any
-    // positive multiple of u). The rare path only: scaling every u cost 9 %
-    // of the query.
-    double uu = u.squaredNorm();
-    if (!(uu >= 0x1p-800 && uu <= 0x1p800)) {
-      const double m = u.cwiseAbs().maxCoeff();
-      if (!(m > 0) || !std::isfinite(m)) break;
-      int e = 0;
-      std::frexp(m, &e);
-      u = Vec3(std::ldexp(u.x(), -e), std::ldexp(u.y(), -e), std::ldexp(u.z(), -e));
-      uu = u.squaredNorm();
-    }
-    const double ua = u.dot(A.a), ub = u.dot(B.a);
-    // |u_perp| from the vector, not sqrt(uu - ua^2): along an axis (flat
-    // faces facing each other) that difference cancels to sqrt(eps) |u|,
-    // which the radius multiplies (a stress near_parallel_planes case put
-    // the bound 1.9e-10 above the distance).
-    const Vec3 pa = u - ua * A.a, pb = u - ub * B.a;
-    const double na = pa.norm(), nb = pb.norm();
-    // h_A(-u) = max_i (-u . c_i + r_i |u_perp|), h_B(u) = u . d + max_j (u . B.a z_j + r_j |u_perp|).
-    const double ha0 = -ua * za[0] + ra[0] * na, ha1 = -ua * za[1] + ra[1] * na;
-    const double hb0 = ub * zb[0] + rb[0] * nb, hb1 = ub * zb[1] + rb[1] * nb;
-    const int ia = ha0 >= ha1 ? 0 : 1, ib = hb0 >= hb1 ? 0 : 1;
-    const double g = -(ia == 0 ? ha0 : ha1) - u.dot(d) - (ib == 0 ? hb0 : hb1);
-    const double err = 32 * kEps * u.lpNorm<1>() * (size + coord);
-    best = std::max(best, (g - err) / (std::sqrt(uu) * (1 + 4 * kEps)));
+    const RevolvedHullDirection h(A.o, A.a, B.o, B.a, u);
+    if (h.none_) break;
+    best = std::max(best, h(A.p0, A.p1, B.p0, B.p1));
     if (k == steps) break;
     // The support points' difference: the next direction (a step of
     // Gilbert's iteration without its simplex). Any rim point supports
     // along an axis.
-    const Vec3 ea = na > 0 ? Vec3(-pa / na) : Vec3::Zero();
-    const Vec3 eb = nb > 0 ? Vec3(pb / nb) : Vec3::Zero();
-    u = (za[ia] * A.a + ra[ia] * ea) - (d + zb[ib] * B.a + rb[ib] * eb);
+    const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
+    const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
+    const int ia = -h.ua_ * za[0] + ra[0] * h.na_ >= -h.ua_ * za[1] + ra[1] * h.na_ ? 0 : 1;
+    const int ib = h.ub_ * zb[0] + rb[0] * h.nb_ >= h.ub_ * zb[1] + rb[1] * h.nb_ ? 0 : 1;
+    const Vec3 ea = h.na_ > 0 ? Vec3(-h.pa_ / h.na_) : Vec3::Zero();
+    const Vec3 eb = h.nb_ > 0 ? Vec3(h.pb_ / h.nb_) : Vec3::Zero();
+    u = (za[ia] * A.a + ra[ia] * ea) - (B.o - A.o + zb[ib] * B.a + rb[ib] * eb);
   }
   return best;
 }
 
+namespace {
+
+// How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
+// = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
+// foot on the chord's line then lies on the chord); +inf beyond.
+double arc_sagitta(const Patch& P) {
+  if (P.straight) return 0.0;
+  if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
+  const double s = std::sin(0.25 * std::abs(P.sweep));
+  return 2 * P.rho * s * s * (1 + 8 * kEps);
+}
+
+}  // namespace
+
 double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
-  // How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
-  // = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
-  // foot on the chord's line then lies on the chord).
-  auto sag = [](const Patch& P) {
-    if (P.straight) return 0.0;
-    if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
-    const double s = std::sin(0.25 * std::abs(P.sweep));
-    return 2 * P.rho * s * s * (1 + 8 * kEps);
-  };
-  const double sa = sag(A), sb = sag(B);
+  const double sa = arc_sagitta(A), sb = arc_sagitta(B);
   if (!std::isfinite(sa + sb)) return -std::numeric_limits<double>::infinity();
   const double best = revolved_hull_bound({A.o, A.a, A.p0, A.p1}, {B.o, B.a, B.p0, B.p1}, dir, steps);
   return best - sa - sb;
+}
+
+double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B) {
+  const double sa = arc_sagitta(A), sb = arc_sagitta(B);
+  if (!std::isfinite(sa + sb)) return -std::numeric_limits<double>::infinity();
+  return h(A.p0, A.p1, B.p0, B.p1) - sa - sb;
 }
 
 }  // namespace revdist

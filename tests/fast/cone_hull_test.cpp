@@ -199,6 +199,10 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
     expect_never_above([&](const Vec3& dir, int steps) { return patch_hull_bound(A, B, dir, steps); }, x - y,
                        genuine + allow, g);
     const double along = patch_hull_bound(A, B, x - y, 1);
+    // The query's form, its direction prepared once for the two axes, is
+    // the same bound bit for bit.
+    const RevolvedHullDirection h(A.o, A.a, B.o, B.a, x - y);
+    EXPECT_EQ(patch_hull_bound(h, A, B), patch_hull_bound(A, B, x - y, 0));
     proven += along > 0;
     tight += along >= 0.9 * genuine;
   }
