@@ -167,8 +167,8 @@ MUTANTS = [
      "ra[2] = {std::max(A.p0.x(), 0.0), std::max(A.p1.x(), 0.0)};",
      "a revolved segment's hull drops the circle of an end beyond the axis"),
     ("node_hull_no_caps", "fast/solid_distance.cpp",
-     "- ha.cap_r -\n                        hb.cap_r - round;",
-     "-\n                        round;",
+     "hb.seg_b) - ha.cap_r - hb.cap_r - round;",
+     "hb.seg_b) - round;",
      "two parts' hull bound leaves their capsules' radii on"),
 ]
 
