@@ -344,29 +344,77 @@ double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, c
 
 namespace {
 
-// How far an arc strays from its chord: its sagitta rho (1 - cos(sweep / 2))
-// = 2 rho sin^2(sweep / 4), for arcs of at most a half turn (each point's
-// foot on the chord's line then lies on the chord); +inf beyond.
-double arc_sagitta(const Patch& P) {
-  if (P.straight) return 0.0;
-  if (!(std::abs(P.sweep) <= M_PI)) return std::numeric_limits<double>::infinity();
-  const double s = std::sin(0.25 * std::abs(P.sweep));
-  return 2 * P.rho * s * s * (1 + 8 * kEps);
+// max over the arc's points q of w . q: the circle's support c . w + rho |w|
+// when w's direction falls within the arc's (taken when in doubt: larger),
+// else the better end. Arcs of more than a half turn take the circle's.
+double arc_support(const Patch& P, const Vec2& w) {
+  double h = std::max(P.p0.dot(w), P.p1.dot(w));
+  const Vec2 v0 = P.p0 - P.c, v1 = P.p1 - P.c;
+  auto cross = [](const Vec2& x, const Vec2& y) { return x.x() * y.y() - x.y() * y.x(); };
+  const double s = P.sweep >= 0 ? 1.0 : -1.0, wn = w.norm();
+  const double slack = 1e-9 * wn * P.rho;
+  const bool inside =
+      !(std::abs(P.sweep) <= M_PI) || (s * cross(v0, w) >= -slack && s * cross(w, v1) >= -slack);
+  if (inside) h = std::max(h, P.c.dot(w) + P.rho * wn);
+  return h;
+}
+
+// max over the patch's points of (r wr + z wz), wr >= 0, for its profile
+// points q = (r, z): the support of the revolved patch along a direction whose
+// parts across and along the axis are wr and wz (every azimuth is taken; see
+// revolved_hull_bound). A segment's ends hold the maximum, an arc's its
+// support. (A patch's ends have r >= 0, and a point of an arc dipping past the
+// axis stands for its point on the axis (patch_point): such points lie
+// between two where the arc crosses the axis, at z between theirs, so those
+// hold their supports.)
+double profile_support(const Patch& P, double wr, double wz) {
+  if (P.straight) return std::max(P.p0.x() * wr + P.p0.y() * wz, P.p1.x() * wr + P.p1.y() * wz);
+  return arc_support(P, Vec2(wr, wz));
+}
+
+// The largest |z| + |r| of a patch's profile (its circle's for an arc).
+double profile_size(const Patch& P) {
+  double s = std::max(std::abs(P.p0.y()) + std::abs(P.p0.x()), std::abs(P.p1.y()) + std::abs(P.p1.x()));
+  if (!P.straight) s = std::max(s, std::abs(P.c.y()) + std::abs(P.c.x()) + P.rho);
+  return s;
 }
 
 }  // namespace
 
-double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
-  const double sa = arc_sagitta(A), sb = arc_sagitta(B);
-  if (!std::isfinite(sa + sb)) return -std::numeric_limits<double>::infinity();
-  const double best = revolved_hull_bound({A.o, A.a, A.p0, A.p1}, {B.o, B.a, B.p0, B.p1}, dir, steps);
-  return best - sa - sb;
+double RevolvedHullDirection::patches(const Patch& A, const Patch& B) const {
+  if (none_) return -std::numeric_limits<double>::infinity();
+  // h_A(-u) and h_B(u) - u . d as in operator(), with the arcs' own supports
+  // (exact, where the chord cone's hull less the sagitta loses up to twice
+  // the sagitta).
+  const double ha = profile_support(A, na_, -ua_), hb = profile_support(B, nb_, ub_);
+  const double sa = profile_size(A), sb = profile_size(B);
+  const double size = std::max(sa, dmax_ + sb);
+  const double coord = std::max(ocoord_, std::max(sa, sb));
+  const double g = -ha - ud_ - hb;
+  const double err = 32 * kEps * l1_ * (size + coord);
+  return (g - err) / scale_;
 }
 
-double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B) {
-  const double sa = arc_sagitta(A), sb = arc_sagitta(B);
-  if (!std::isfinite(sa + sb)) return -std::numeric_limits<double>::infinity();
-  return h(A.p0, A.p1, B.p0, B.p1) - sa - sb;
+double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
+  double best = -std::numeric_limits<double>::infinity();
+  Vec3 u = dir;
+  for (int k = 0; k <= steps; ++k) {
+    const RevolvedHullDirection h(A.o, A.a, B.o, B.a, u);
+    if (h.none_) break;
+    best = std::max(best, h.patches(A, B));
+    if (k == steps) break;
+    // The next direction from the chords' supports (any direction bounds).
+    const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
+    const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
+    const int ia = -h.ua_ * za[0] + ra[0] * h.na_ >= -h.ua_ * za[1] + ra[1] * h.na_ ? 0 : 1;
+    const int ib = h.ub_ * zb[0] + rb[0] * h.nb_ >= h.ub_ * zb[1] + rb[1] * h.nb_ ? 0 : 1;
+    const Vec3 ea = h.na_ > 0 ? Vec3(-h.pa_ / h.na_) : Vec3::Zero();
+    const Vec3 eb = h.nb_ > 0 ? Vec3(h.pb_ / h.nb_) : Vec3::Zero();
+    u = (za[ia] * A.a + ra[ia] * ea) - (B.o - A.o + zb[ib] * B.a + rb[ib] * eb);
+  }
+  return best;
 }
+
+double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B) { return h.patches(A, B); }
 
 }  // namespace revdist

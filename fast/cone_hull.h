@@ -49,11 +49,15 @@ class RevolvedHullDirection {
   RevolvedHullDirection(const Vec3& oa, const Vec3& a, const Vec3& ob, const Vec3& b, const Vec3& dir);
   // The bound for A's segment a0 a1 and B's b0 b1 (meridian (r, z)).
   double operator()(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) const;
+  // The bound for two patches about these axes (A's and B's o and a): the
+  // supports of their revolved arcs or segments, exact (see patch_hull_bound).
+  double patches(const Patch& A, const Patch& B) const;
   // The direction it was built for (before any rescaling).
   const Vec3& dir() const { return dir_; }
 
  private:
   friend double revolved_hull_bound(const RevolvedSegment&, const RevolvedSegment&, const Vec3&, int);
+  friend double patch_hull_bound(const Patch&, const Patch&, const Vec3&, int);
   Vec3 dir_, u_, pa_, pb_;
   bool none_ = false;          // no usable direction (zero or not finite): the bound is -inf
   double ua_ = 0, ub_ = 0;     // u . a, u . b
@@ -62,15 +66,17 @@ class RevolvedHullDirection {
   double dmax_ = 0, ocoord_ = 0, l1_ = 0, scale_ = 0;  // |ob - oa|_inf, max |o|_inf, |u|_1, |u| (1 + 4 eps)
 };
 
-// A lower bound on the distance between any two patches without iteration to
-// convergence: every point of a toroidal patch of at most a half turn lies
-// within its arc's sagitta of its chord's cone, at the same azimuth, so both
-// patches lie within their sagittas of their end circles' hulls (solid
-// frusta), and the support bound along any direction holds for the hulls
-// (see cone_hull_distance). The directions tried: `dir` (from B towards A;
-// a query's witness direction suits patches near its contact) and `steps`
-// more, each the difference of the last supports. -inf when an arc turns
-// more than a half turn; <= 0 or negative when the hulls may meet.
+// A lower bound on the distance between any two patches without iteration:
+// the support bound of the two revolved patches along `dir` (from B towards
+// A; a query's witness direction suits patches near its contact) and `steps`
+// more directions (from the chords' supports). Along a direction with parts
+// w_r across and w_z along a patch's axis, the patch's support is the
+// maximum over its profile of |r| w_r + z w_z (every azimuth is taken): at a
+// segment's end, or at the arc's point of normal w when that lies on the arc
+// (its circle's support), else at an end. Exact for the revolved patches'
+// hulls, so two convex sides facing each other (a cone or a torus's outer
+// band) are bounded by their distance along their common normal; <= 0 when
+// the hulls may meet.
 double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps);
 // The same along one direction already prepared for the patches' axes (A's
 // and B's o and a): patch_hull_bound(A, B, h.dir(), 0), bit for bit.

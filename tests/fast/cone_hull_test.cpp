@@ -151,7 +151,8 @@ void expect_never_above(Bound bound, const Vec3& closest, double limit, std::mt1
 }
 
 // patch_hull_bound on random toroidal and conical patches (arcs up to a
-// half turn, either side bulging towards the other patch) near each other:
+// half turn, either side bulging towards the other patch, some of A's on a
+// sphere from its pole) near each other:
 // along any direction it never exceeds a genuine pair's distance (the best
 // of a sample grid, descended to a local minimum of both patches), and along
 // the sampled closest pair's direction it proves most pairs side by side
@@ -172,9 +173,19 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
     if (rmin < 0.05) a.start.x() += 0.05 - rmin;
     return a;
   };
+  // An arc of a sphere about the axis from its pole, up to the other pole.
+  auto sphere_arc = [&] {
+    Arc2 a;
+    const double R = 0.1 + 0.9 * u(g);
+    a.start = Vec2(0.0, u(g) - 0.5 - R);
+    a.tangent = Vec2(1, 0);
+    a.curvature = 1 / R;
+    a.length = (0.05 + 0.95 * u(g)) * M_PI * R;
+    return a;
+  };
   int proven = 0, tight = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const Patch A = make_patch(random_arc(trial % 3 == 0), Mat3::Identity(), Vec3::Zero());
+    const Patch A = make_patch(trial % 5 == 4 ? sphere_arc() : random_arc(trial % 3 == 0), Mat3::Identity(), Vec3::Zero());
     const Mat3 R = rotation(2 * M_PI * u(g), Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5));
     const Vec3 t = 2.5 * Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
     const Patch B = make_patch(random_arc(trial % 3 == 1), R, t);
@@ -208,9 +219,10 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
   }
   std::printf("[ stats    ] of 300 pairs: %d proven apart along the closest pair's direction, %d to 10 %%\n", proven,
               tight);
-  // Measured at the default seed: 115 and 34 (other seeds vary).
-  EXPECT_GE(proven, 80);
-  EXPECT_GE(tight, 20);
+  // Measured at the default seed: 151 and 117 (seeds 1-80: at least 129 and
+  // 93; the chord cones less the sagittas gave 115 and 34).
+  EXPECT_GE(proven, 100);
+  EXPECT_GE(tight, 60);
 }
 
 // revolved_hull_bound on random segments revolved about random axes, some
