@@ -384,8 +384,8 @@ double profile_size(const Patch& P) {
 double RevolvedHullDirection::patches(const Patch& A, const Patch& B) const {
   if (none_) return -std::numeric_limits<double>::infinity();
   // h_A(-u) and h_B(u) - u . d as in operator(), with the arcs' own supports
-  // (exact, where the chord cone's hull less the sagitta loses up to twice
-  // the sagitta).
+  // (exact: a chord cone's hull less the arc's sagitta, this bound's first
+  // form, lost up to twice the sagitta).
   const double ha = profile_support(A, na_, -ua_), hb = profile_support(B, nb_, ub_);
   const double sa = profile_size(A), sb = profile_size(B);
   const double size = std::max(sa, dmax_ + sb);

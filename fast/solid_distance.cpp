@@ -6,8 +6,8 @@
 // a circle, so two parts are at least circle_distance - radii apart. The
 // capsule's segment, rotated, is a cone whose hull (a solid frustum) holds the
 // part to within the capsule's radius: a separating direction bounds two parts
-// with two support values (fast/cone_hull.h), and the same for two patches,
-// which lie within their arcs' sagittas of their chord cones. Parts with
+// with two support values (fast/cone_hull.h), and the same, exactly, for two
+// patches (a revolved arc's support is its circle's or an end's). Parts with
 // a fit (leaves and refinements) are compared exactly: the distance between
 // their arcs' patches (fast/patch_distance.h) minus both proven eps is a lower
 // bound for the true surfaces when the patches are proven apart; the patches'

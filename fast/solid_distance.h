@@ -52,7 +52,7 @@ struct DistanceStats {
   long patch_pairs = 0;  // full patch-patch evaluations (fast/patch_distance.h): the local proof's fallbacks
   long local_pairs = 0;  // patch pairs settled by the local proof (patches_at_least)
   long local_boxes = 0;  // boxes the local proof evaluated (settled or not)
-  long hull_pairs = 0;   // patch pairs settled by their chord cones' hulls (patch_hull_bound), before the quick look
+  long hull_pairs = 0;   // patch pairs settled by their revolved arcs' hulls (patch_hull_bound), first
   long spine_pairs = 0;  // patch pairs settled by a spine bound (patch_spine_at_least), before the local proof
   long spine_evals = 0;  // points of the spines the spine bounds evaluated (settled or not)
   long quick_pairs = 0;  // patch pairs settled by the cheap look (pruned or exact)
