@@ -320,26 +320,40 @@ double RevolvedHullDirection::operator()(const Vec2& a0, const Vec2& a1, const V
   return (g - err) / scale_;
 }
 
-double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
+Vec3 RevolvedHullDirection::next(const RevolvedSegment& A, const RevolvedSegment& B) const {
+  // The support points' difference (a step of Gilbert's iteration without
+  // its simplex). Any rim point supports along an axis.
+  const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
+  const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
+  const int ia = -ua_ * za[0] + ra[0] * na_ >= -ua_ * za[1] + ra[1] * na_ ? 0 : 1;
+  const int ib = ub_ * zb[0] + rb[0] * nb_ >= ub_ * zb[1] + rb[1] * nb_ ? 0 : 1;
+  const Vec3 ea = na_ > 0 ? Vec3(-pa_ / na_) : Vec3::Zero();
+  const Vec3 eb = nb_ > 0 ? Vec3(pb_ / nb_) : Vec3::Zero();
+  return (za[ia] * A.a + ra[ia] * ea) - (B.o - A.o + zb[ib] * B.a + rb[ib] * eb);
+}
+
+namespace {
+
+// The best of a bound along `dir` and `steps` more directions, each from
+// the last one's supports of the segments A and B.
+template <class Bound>
+double stepped(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps, Bound bound) {
   double best = -std::numeric_limits<double>::infinity();
   Vec3 u = dir;
   for (int k = 0; k <= steps; ++k) {
     const RevolvedHullDirection h(A.o, A.a, B.o, B.a, u);
-    if (h.none_) break;
-    best = std::max(best, h(A.p0, A.p1, B.p0, B.p1));
+    if (h.none()) break;
+    best = std::max(best, bound(h));
     if (k == steps) break;
-    // The support points' difference: the next direction (a step of
-    // Gilbert's iteration without its simplex). Any rim point supports
-    // along an axis.
-    const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
-    const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
-    const int ia = -h.ua_ * za[0] + ra[0] * h.na_ >= -h.ua_ * za[1] + ra[1] * h.na_ ? 0 : 1;
-    const int ib = h.ub_ * zb[0] + rb[0] * h.nb_ >= h.ub_ * zb[1] + rb[1] * h.nb_ ? 0 : 1;
-    const Vec3 ea = h.na_ > 0 ? Vec3(-h.pa_ / h.na_) : Vec3::Zero();
-    const Vec3 eb = h.nb_ > 0 ? Vec3(h.pb_ / h.nb_) : Vec3::Zero();
-    u = (za[ia] * A.a + ra[ia] * ea) - (B.o - A.o + zb[ib] * B.a + rb[ib] * eb);
+    u = h.next(A, B);
   }
   return best;
+}
+
+}  // namespace
+
+double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, const Vec3& dir, int steps) {
+  return stepped(A, B, dir, steps, [&](const RevolvedHullDirection& h) { return h(A.p0, A.p1, B.p0, B.p1); });
 }
 
 namespace {
@@ -396,23 +410,9 @@ double RevolvedHullDirection::patches(const Patch& A, const Patch& B) const {
 }
 
 double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
-  double best = -std::numeric_limits<double>::infinity();
-  Vec3 u = dir;
-  for (int k = 0; k <= steps; ++k) {
-    const RevolvedHullDirection h(A.o, A.a, B.o, B.a, u);
-    if (h.none_) break;
-    best = std::max(best, h.patches(A, B));
-    if (k == steps) break;
-    // The next direction from the chords' supports (any direction bounds).
-    const double za[2] = {A.p0.y(), A.p1.y()}, ra[2] = {std::abs(A.p0.x()), std::abs(A.p1.x())};
-    const double zb[2] = {B.p0.y(), B.p1.y()}, rb[2] = {std::abs(B.p0.x()), std::abs(B.p1.x())};
-    const int ia = -h.ua_ * za[0] + ra[0] * h.na_ >= -h.ua_ * za[1] + ra[1] * h.na_ ? 0 : 1;
-    const int ib = h.ub_ * zb[0] + rb[0] * h.nb_ >= h.ub_ * zb[1] + rb[1] * h.nb_ ? 0 : 1;
-    const Vec3 ea = h.na_ > 0 ? Vec3(-h.pa_ / h.na_) : Vec3::Zero();
-    const Vec3 eb = h.nb_ > 0 ? Vec3(h.pb_ / h.nb_) : Vec3::Zero();
-    u = (za[ia] * A.a + ra[ia] * ea) - (B.o - A.o + zb[ib] * B.a + rb[ib] * eb);
-  }
-  return best;
+  // (The next directions from the chords' supports: any direction bounds.)
+  return stepped({A.o, A.a, A.p0, A.p1}, {B.o, B.a, B.p0, B.p1}, dir, steps,
+                 [&](const RevolvedHullDirection& h) { return h.patches(A, B); });
 }
 
 double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B) { return h.patches(A, B); }

@@ -54,10 +54,13 @@ class RevolvedHullDirection {
   double patches(const Patch& A, const Patch& B) const;
   // The direction it was built for (before any rescaling).
   const Vec3& dir() const { return dir_; }
+  // No usable direction (zero or not finite): every bound is -inf.
+  bool none() const { return none_; }
+  // The next direction to try for segments A and B about these axes: the
+  // difference of their supports along this one.
+  Vec3 next(const RevolvedSegment& A, const RevolvedSegment& B) const;
 
  private:
-  friend double revolved_hull_bound(const RevolvedSegment&, const RevolvedSegment&, const Vec3&, int);
-  friend double patch_hull_bound(const Patch&, const Patch&, const Vec3&, int);
   Vec3 dir_, u_, pa_, pb_;
   bool none_ = false;          // no usable direction (zero or not finite): the bound is -inf
   double ua_ = 0, ub_ = 0;     // u . a, u . b
