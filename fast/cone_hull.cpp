@@ -315,6 +315,10 @@ double RevolvedHullDirection::operator()(const Vec2& a0, const Vec2& a1, const V
   // h_A(-u) = max_i (-u . c_i + r_i |u_perp|), h_B(u) = u . d + max_j (u . b z_j + r_j |u_perp|).
   const double ha = std::max(-ua_ * za[0] + ra[0] * na_, -ua_ * za[1] + ra[1] * na_);
   const double hb = std::max(ub_ * zb[0] + rb[0] * nb_, ub_ * zb[1] + rb[1] * nb_);
+  return from_supports(ha, hb, size, coord);
+}
+
+double RevolvedHullDirection::from_supports(double ha, double hb, double size, double coord) const {
   const double g = -ha - ud_ - hb;
   const double err = 32 * kEps * l1_ * (size + coord);
   return (g - err) / scale_;
@@ -402,11 +406,7 @@ double RevolvedHullDirection::patches(const Patch& A, const Patch& B) const {
   // form, lost up to twice the sagitta).
   const double ha = profile_support(A, na_, -ua_), hb = profile_support(B, nb_, ub_);
   const double sa = profile_size(A), sb = profile_size(B);
-  const double size = std::max(sa, dmax_ + sb);
-  const double coord = std::max(ocoord_, std::max(sa, sb));
-  const double g = -ha - ud_ - hb;
-  const double err = 32 * kEps * l1_ * (size + coord);
-  return (g - err) / scale_;
+  return from_supports(ha, hb, std::max(sa, dmax_ + sb), std::max(ocoord_, std::max(sa, sb)));
 }
 
 double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps) {
@@ -414,7 +414,5 @@ double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int ste
   return stepped({A.o, A.a, A.p0, A.p1}, {B.o, B.a, B.p0, B.p1}, dir, steps,
                  [&](const RevolvedHullDirection& h) { return h.patches(A, B); });
 }
-
-double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B) { return h.patches(A, B); }
 
 }  // namespace revdist

@@ -42,7 +42,7 @@ double revolved_hull_bound(const RevolvedSegment& A, const RevolvedSegment& B, c
 // same two axes (a query's two solids): what depends only on the axes and the
 // direction (its components along and across each axis, its offset between
 // the origins) is computed once; each pair then costs its four support values
-// (about 40 instructions where the whole bound costs about 235). Bit for bit
+// (about 80 instructions where the whole bound costs about 235). Bit for bit
 // the value revolved_hull_bound(A, B, dir, 0) gives.
 class RevolvedHullDirection {
  public:
@@ -50,7 +50,8 @@ class RevolvedHullDirection {
   // The bound for A's segment a0 a1 and B's b0 b1 (meridian (r, z)).
   double operator()(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) const;
   // The bound for two patches about these axes (A's and B's o and a): the
-  // supports of their revolved arcs or segments, exact (see patch_hull_bound).
+  // supports of their revolved arcs or segments, exact (see patch_hull_bound);
+  // patch_hull_bound(A, B, dir(), 0), bit for bit.
   double patches(const Patch& A, const Patch& B) const;
   // The direction it was built for (before any rescaling).
   const Vec3& dir() const { return dir_; }
@@ -61,6 +62,10 @@ class RevolvedHullDirection {
   Vec3 next(const RevolvedSegment& A, const RevolvedSegment& B) const;
 
  private:
+  // The bound from the two supports h_A(-u) and h_B(u) - u . d, less the
+  // rounding of coordinates up to size and coord.
+  double from_supports(double ha, double hb, double size, double coord) const;
+
   Vec3 dir_, u_, pa_, pb_;
   bool none_ = false;          // no usable direction (zero or not finite): the bound is -inf
   double ua_ = 0, ub_ = 0;     // u . a, u . b
@@ -81,8 +86,5 @@ class RevolvedHullDirection {
 // band) are bounded by their distance along their common normal; <= 0 when
 // the hulls may meet.
 double patch_hull_bound(const Patch& A, const Patch& B, const Vec3& dir, int steps);
-// The same along one direction already prepared for the patches' axes (A's
-// and B's o and a): patch_hull_bound(A, B, h.dir(), 0), bit for bit.
-double patch_hull_bound(const RevolvedHullDirection& h, const Patch& A, const Patch& B);
 
 }  // namespace revdist

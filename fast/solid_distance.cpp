@@ -113,8 +113,6 @@ struct Solid {
   Circle3 disk_circle(const Part& p) const { return {p.world_c, axis, disk_circle_radius(p)}; }
   static double disk_circle_radius(const Part& p) { return std::max(p.disk_c.x(), 0.0); }
   void place(Part& p) const { p.world_c = s.t + p.disk_c.y() * axis; }
-  // The part's capsule segment revolved (the part is within cap_r of it).
-  RevolvedSegment revolved(const Part& p) const { return {s.t, axis, p.seg_a, p.seg_b}; }
 
   bool can_split(const Part& p, int max_refine) const {
     if (!p.has_fit) return true;
@@ -733,7 +731,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // supports 202 -> 187 M, and first, before the closed forms, 185 M.
         // (Supports refined once or more from the witness direction settle
         // no more pairs.)
-        if (const double hull = patch_hull_bound(witness_hull(), P, Q);
+        if (const double hull = witness_hull().patches(P, Q);
             hull - fa.eps - fb.eps - round >= cut()) {
           ++st.hull_pairs;
           settle(hull);
