@@ -139,6 +139,30 @@ TEST(ConeHull, NeverAboveAGenuinePair) {
   EXPECT_GE(proven, 100);  // every side-by-side pair at least
 }
 
+// The closest pair of two grids of kU profile fractions (0..1) by kT
+// azimuths on surfaces a(t, th) and b(t, th): its distance, the parameters of
+// its point on a, and both points.
+struct GridPair {
+  double dist = std::numeric_limits<double>::infinity();
+  Vec2 a_param = Vec2::Zero();
+  Vec3 x = Vec3::Zero(), y = Vec3::Zero();
+};
+template <class SurfA, class SurfB>
+GridPair closest_grid_pair(SurfA a, SurfB b, int kU, int kT) {
+  std::vector<Vec3> pb;
+  for (int k = 0; k < kU; ++k)
+    for (int l = 0; l < kT; ++l) pb.push_back(b(double(k) / (kU - 1), 2 * M_PI * l / kT));
+  GridPair best;
+  for (int i = 0; i < kU; ++i)
+    for (int j = 0; j < kT; ++j) {
+      const Vec2 param(double(i) / (kU - 1), 2 * M_PI * j / kT);
+      const Vec3 x = a(param.x(), param.y());
+      for (const Vec3& y : pb)
+        if ((x - y).norm() < best.dist) best = {(x - y).norm(), param, x, y};
+    }
+  return best;
+}
+
 // A hull bound along the closest pair's direction and five random ones, with
 // 0 and 2 refining steps, never above `limit` (a genuine pair's distance).
 template <class Bound>
@@ -191,20 +215,10 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
     const Patch B = make_patch(random_arc(trial % 3 == 1), R, t);
     SCOPED_TRACE("trial " + std::to_string(trial));
     // The closest pair of a grid, descended: genuine points of both patches.
-    constexpr int kU = 12, kT = 32;
-    double best = std::numeric_limits<double>::infinity();
-    Vec2 start;
-    std::vector<Vec3> pb;
-    for (int k = 0; k < kU; ++k)
-      for (int l = 0; l < kT; ++l) pb.push_back(patch_point(B, double(k) / (kU - 1), 2 * M_PI * l / kT));
-    for (int i = 0; i < kU; ++i)
-      for (int j = 0; j < kT; ++j) {
-        const Vec3 x = patch_point(A, double(i) / (kU - 1), 2 * M_PI * j / kT);
-        for (const Vec3& y : pb)
-          if ((x - y).norm() < best) best = (x - y).norm(), start = Vec2(double(i) / (kU - 1), 2 * M_PI * j / kT);
-      }
+    const GridPair grid = closest_grid_pair([&](double t, double th) { return patch_point(A, t, th); },
+                                            [&](double t, double th) { return patch_point(B, t, th); }, 12, 32);
     Vec3 x, y;
-    const double genuine = std::min(best, patch_pair_descent(A, B, start, 1e-12, &x, &y));
+    const double genuine = std::min(grid.dist, patch_pair_descent(A, B, grid.a_param, 1e-12, &x, &y));
     // Coordinates within ~3 of the origin: 256 ulps of them.
     const double allow = 256 * kE * 4;
     expect_never_above([&](const Vec3& dir, int steps) { return patch_hull_bound(A, B, dir, steps); }, x - y,
@@ -213,7 +227,7 @@ TEST(PatchHullBound, NeverAboveTheDistanceOfToriAndCones) {
     // The query's form, its direction prepared once for the two axes, is
     // the same bound bit for bit.
     const RevolvedHullDirection h(A.o, A.a, B.o, B.a, x - y);
-    EXPECT_EQ(patch_hull_bound(h, A, B), patch_hull_bound(A, B, x - y, 0));
+    EXPECT_EQ(h.patches(A, B), patch_hull_bound(A, B, x - y, 0));
     proven += along > 0;
     tight += along >= 0.9 * genuine;
   }
@@ -248,23 +262,13 @@ TEST(RevolvedHullBound, NeverAboveSampledPairs) {
     const Vec3 ab = Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5).normalized();
     const RevolvedSegment B = random_segment(2.0 * Vec3(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5), ab);
     crossing += (A.p0.x() < 0) != (A.p1.x() < 0);
-    constexpr int kU = 16, kT = 48;
-    std::vector<Vec3> pb;
-    for (int k = 0; k < kU; ++k)
-      for (int l = 0; l < kT; ++l) pb.push_back(point(B, double(k) / (kU - 1), 2 * M_PI * l / kT));
-    double best = std::numeric_limits<double>::infinity();
-    Vec3 bx = Vec3::Zero(), by = Vec3::Zero();
-    for (int i = 0; i < kU; ++i)
-      for (int j = 0; j < kT; ++j) {
-        const Vec3 x = point(A, double(i) / (kU - 1), 2 * M_PI * j / kT);
-        for (const Vec3& y : pb)
-          if ((x - y).norm() < best) best = (x - y).norm(), bx = x, by = y;
-      }
+    const GridPair grid = closest_grid_pair([&](double t, double th) { return point(A, t, th); },
+                                            [&](double t, double th) { return point(B, t, th); }, 16, 48);
     SCOPED_TRACE("trial " + std::to_string(trial));
     const double allow = 256 * kE * 4;
-    expect_never_above([&](const Vec3& dir, int steps) { return revolved_hull_bound(A, B, dir, steps); }, bx - by,
-                       best + allow, g);
-    proven += revolved_hull_bound(A, B, bx - by, 0) > 0;
+    expect_never_above([&](const Vec3& dir, int steps) { return revolved_hull_bound(A, B, dir, steps); },
+                       grid.x - grid.y, grid.dist + allow, g);
+    proven += revolved_hull_bound(A, B, grid.x - grid.y, 0) > 0;
   }
   std::printf("[ stats    ] of 300 pairs (%d crossing their axis): %d proven apart along the closest pair\n", crossing,
               proven);
