@@ -186,20 +186,24 @@ struct Solid {
     const double rho = std::hypot(d.x(), d.y());
     const Vec2 q(rho, d.z());
     const Piece& piece = s.profile->pieces[f.piece];
-    const Vec2 c0 = piece_point(piece, f.u0), c1 = piece_point(piece, f.u1);
-    const Vec2 chord = c1 - c0;
+    // Newton from the projection onto the fit's chord (the fit's ends, within
+    // rounding of the curve's: only the start depends on them). Every point
+    // taken is the curve's own, at the iterates, which are clamped to the
+    // span: an end nearest to q is reached there.
+    const Vec2 c0 = f.arc[0].start, chord = f.arc[f.arcs - 1].end() - c0;
     const double l2 = chord.squaredNorm();
     double u = f.u0 + (l2 > 0 ? std::clamp((q - c0).dot(chord) / l2, 0.0, 1.0) : 0.5) * (f.u1 - f.u0);
-    Vec2 best = (q - c0).squaredNorm() < (q - c1).squaredNorm() ? c0 : c1;
+    Vec2 best;
+    double best_d = kInf;
     Vec2 der[3];
     for (int it = 0; it < 12; ++it) {
       piece_derivatives(piece, u, 2, der);
       const Vec2 r = der[0] - q;
-      if (r.squaredNorm() < (q - best).squaredNorm()) best = der[0];
+      if (it == 0 || r.squaredNorm() < best_d) best = der[0], best_d = r.squaredNorm();
       const double g = r.dot(der[1]);
       const double h = der[1].squaredNorm() + r.dot(der[2]);
-      if (!(h > 0)) break;
-      const double un = std::clamp(u - g / h, f.u0, f.u1);
+      // Where the squared distance is not convex, downhill to the span's end.
+      const double un = h > 0 ? std::clamp(u - g / h, f.u0, f.u1) : g > 0 ? f.u0 : f.u1;
       const double step = std::abs(un - u);
       u = un;
       // Newton's error is about the square of the last step: below 1e-10 of
@@ -207,7 +211,7 @@ struct Solid {
       if (!(step > 1e-10 * (f.u1 - f.u0))) break;
     }
     piece_derivatives(piece, u, 0, der);
-    if ((der[0] - q).squaredNorm() < (best - q).squaredNorm()) best = der[0];
+    if ((der[0] - q).squaredNorm() < best_d) best = der[0];
     const Vec3 er = rho > 0 ? Vec3(d.x() / rho, d.y() / rho, 0) : Vec3::UnitX();
     const Vec3 local(std::max(best.x(), 0.0) * er.x(), std::max(best.x(), 0.0) * er.y(), best.y());
     return s.R * local + s.t;
