@@ -524,13 +524,25 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // The rounds project onto the fits' patches; only the last pair is mapped
   // to the input curves (true_point, ten times a patch projection's cost).
   {
-    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b, x;
+    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b, x = y;
     BiarcFit fx, fy;
-    for (int i = 0; i < 3; ++i) {
-      fx = A.nearest_fit(y);
-      x = A.fit_point(fx, y);
+    // Between nearly parallel sides each round moves the pair only a little
+    // way along them: the point projected onto A is pushed on by 0.7 of B's
+    // last move (any point may be projected; the pair stays genuine). Eight
+    // rounds, fewer once the pair moves by under 1 % of its distance.
+    // Measured on the motion probe at eps 1e-5 (M instructions, node pairs a
+    // query): three plain rounds 182.0 / 94.7, eight 178.7 / 88.8, these
+    // 168.8 / 84.4 (pushes of 0.5 to 0.85 and 8 to 14 rounds: 169.5-172.4;
+    // a push of 2 overshoots: 198.5).
+    Vec3 ys = y;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 x0 = x, y0 = y;
+      fx = A.nearest_fit(ys);
+      x = A.fit_point(fx, ys);
       fy = B.nearest_fit(x);
       y = B.fit_point(fy, x);
+      if (i > 0 && (x - x0).norm() + (y - y0).norm() <= 1e-2 * (x - y).norm()) break;
+      ys = i > 0 ? Vec3(y + 0.7 * (y - y0)) : y;
     }
     offer(A.true_point(fx, x), B.true_point(fy, y));
   }
