@@ -943,6 +943,16 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       res.reason = "containment undecided: a surface point of one solid lies within rounding of the other's boundary";
   }
   lb = std::max(lb, 0.0);
+  // A bracket down to 0 met by a witness pair within tol of touching, with
+  // no kernel run on crossing fits, may hide an overlap: the witness's probe
+  // (its points, then the input curve along their meridians), once.
+  if (lb <= 0 && !tried_witness && ub < kInf && !unresolved) {
+    tried_witness = true;
+    const Vec3 wa = res.point_a, wb = res.point_b;
+    if (in_b(wa) || in_a(wb) || A.along_meridian(A.nearest_fit(wa), wa, 3, in_b) ||
+        B.along_meridian(B.nearest_fit(wb), wb, 3, in_a))
+      return proven_overlap(shared);
+  }
   // A stop before any candidate (a small budget) still owes a finite
   // bracket: any two genuine surface points bound the distance from above.
   if (!(ub < kInf)) offer(A.some_surface_point(), B.some_surface_point());

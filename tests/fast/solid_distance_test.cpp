@@ -660,6 +660,18 @@ TEST(SolidDistanceOverlap, WitnessProvesItBeforeAnyEnumeration) {
   EXPECT_EQ(r.stats.patch_pairs, 0) << describe(r);
 }
 
+// Two unit balls 1e-4 deep in each other, at tol 1e-3: the first witness
+// pair meets tol before any kernel runs on the crossing fits, and the bracket
+// [0, 1e-4] was the answer; the witness's probe at the end proves the overlap.
+TEST(SolidDistanceOverlap, ShallowerThanTolIsStillProven) {
+  Loaded L(source_path("cases/regressions/solid_overlap_shallow_spheres.json"), kEps);
+  for (const auto& [X, Y] : {std::pair{0, 1}, std::pair{1, 0}}) {
+    const SolidDistanceResult r = solid_distance(L.m.instances[X], L.m.instances[Y], DistanceOptions{1e-3});
+    EXPECT_TRUE(r.overlap) << describe(r);
+    EXPECT_EQ(r.upper, 0.0) << describe(r);
+  }
+}
+
 // Two linked rings with perpendicular axes (a scene's): the closed-form bounds
 // of inner node pairs stay below the cut for most of them, and the query popped
 // 4187 node pairs for 92 leaf pairs; the circles' distance for inner pairs of
