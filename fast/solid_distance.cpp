@@ -576,6 +576,15 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // earlier ones (which made long queries quadratic in their leaf pairs).
   NeighbourTable neighbours;
   bool tried_witness = false;  // the witness's overlap probe (once a query)
+  // The witness's overlap probe: its points, then the input curve along their
+  // meridians from the spans of fits fa and fb (alternating projection stops
+  // near a crossing, where no point is inside; a step along the profile goes
+  // in). True when it proves an overlap (the point in `shared`).
+  auto witness_probe = [&](const BiarcFit& fa, const BiarcFit& fb) {
+    tried_witness = true;
+    const Vec3 wa = res.point_a, wb = res.point_b;
+    return in_b(wa) || in_a(wb) || A.along_meridian(fa, wa, 3, in_b) || B.along_meridian(fb, wb, 3, in_a);
+  };
   auto remember = [&](std::int32_t ia, std::int32_t ib, double lb) {
     const BiarcFit &fa = A.parts[ia].fit, &fb = B.parts[ib].fit;
     // As A's neighbour `fa` of a later fit of A against fb: it precedes that
@@ -871,15 +880,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         }
         // Fits that may cross (their bound less the fit errors reaches 0),
         // once a query, before the enumeration: the best witness pair so far
-        // and the input curve along its meridians may already prove an
-        // overlap (alternating projection stops near the crossing, where no
-        // point is inside; a step along the profile goes in).
-        if (!tried_witness && disk <= 0 && ub < kInf) {
-          tried_witness = true;
-          const Vec3 wa = res.point_a, wb = res.point_b;
-          if (in_b(wa) || in_a(wb) || A.along_meridian(fa, wa, 3, in_b) || B.along_meridian(fb, wb, 3, in_a))
-            return proven_overlap(shared);
-        }
+        // may already prove an overlap.
+        if (!tried_witness && disk <= 0 && ub < kInf && witness_probe(fa, fb)) return proven_overlap(shared);
         ++st.patch_pairs;
         // Parts that cannot beat the current bracket are skipped (their
         // bounds are kept in lower_skipped).
@@ -944,15 +946,11 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   }
   lb = std::max(lb, 0.0);
   // A bracket down to 0 met by a witness pair within tol of touching, with
-  // no kernel run on crossing fits, may hide an overlap: the witness's probe
-  // (its points, then the input curve along their meridians), once.
-  if (lb <= 0 && !tried_witness && ub < kInf && !unresolved) {
-    tried_witness = true;
-    const Vec3 wa = res.point_a, wb = res.point_b;
-    if (in_b(wa) || in_a(wb) || A.along_meridian(A.nearest_fit(wa), wa, 3, in_b) ||
-        B.along_meridian(B.nearest_fit(wb), wb, 3, in_a))
-      return proven_overlap(shared);
-  }
+  // no kernel run on crossing fits, may hide an overlap: the witness's probe,
+  // from the fits nearest its points.
+  if (lb <= 0 && !tried_witness && ub < kInf && !unresolved &&
+      witness_probe(A.nearest_fit(res.point_a), B.nearest_fit(res.point_b)))
+    return proven_overlap(shared);
   // A stop before any candidate (a small budget) still owes a finite
   // bracket: any two genuine surface points bound the distance from above.
   if (!(ub < kInf)) offer(A.some_surface_point(), B.some_surface_point());
