@@ -608,14 +608,18 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
   return d;
 }
 
-double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
-  const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
-  // patch_nearest's distance, with Q's window computed once.
-  const GaussWindow win = gauss_window(Q);
-  auto f = [&](double u, double th) {
-    Vec2 best;
-    return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, u, th)), &best);
-  };
+namespace {
+// Damped Newton descent of a function of P's parameters (u, th), u kept in
+// [0, 1], from `start`, until a Newton step promises less than `resolution`
+// (at most 8 steps): patch_pair_descent's and patch_deep_point's. g(q, c, s)
+// is the function at meridian point q and the azimuth of cosine c and sine s
+// (in bp's frame). Where the function is not convex in the azimuth, the step
+// tried first there is `flat_step` radians downhill (then halved). Returns
+// the parameters reached.
+template <class G>
+Vec2 descend_params(const Patch& P, const BoxedPatch& bp, G&& g, const Vec2& start, double resolution,
+                    double flat_step) {
+  auto f = [&](double u, double th) { return g(meridian_point(P, u), std::cos(th), std::sin(th)); };
   // Steps of the finite differences, in profile fraction and radians: small
   // against a patch, large against rounding (second differences lose
   // ~1e-16 / 1e-8 of the distance's scale, far below what a start needs).
@@ -624,10 +628,6 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
   // azimuths, those at th -+ ht by angle addition: 4 trigonometric calls an
   // iteration, not 10.
   const double c_ht = std::cos(ht), s_ht = std::sin(ht);
-  auto g = [&](const Vec2& q, double c, double s) {
-    Vec2 best;
-    return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, q, c, s)), &best);
-  };
   double u = std::clamp(start.x(), 0.0, 1.0), th = start.y();
   double fu = f(u, th);
   for (int it = 0; it < 8; ++it) {
@@ -654,7 +654,7 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
       st = -(h_uu * g_t - h_ut * g_u) / det;
       last = -0.5 * (g_u * su + g_t * st) <= resolution;
     } else {
-      st = h_tt > 0 ? -g_t / h_tt : (g_t > 0 ? -0.05 : 0.05);
+      st = h_tt > 0 ? -g_t / h_tt : (g_t > 0 ? -flat_step : flat_step);
       su = g_u > 0 ? -1.0 : 1.0;
     }
     st = std::clamp(st, -0.5, 0.5);
@@ -671,8 +671,53 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
     }
     if (!moved || last) break;
   }
-  *x = framed_point(P, bp.e1, bp.e2, u, th);
+  return Vec2(u, th);
+}
+
+// P's parameters (profile fraction u, azimuth th in the frame e1, e2) of a
+// world point x near it (u unclamped).
+Vec2 patch_params(const Patch& P, const Vec3& e1, const Vec3& e2, const Vec3& x) {
+  Vec3 er;
+  const Vec2 q = patch_local(P, x, &er);
+  const double th = std::atan2(er.dot(e2), er.dot(e1));
+  if (P.straight) {
+    const Vec2 d = P.p1 - P.p0;
+    return Vec2((q - P.p0).dot(d) / d.squaredNorm(), th);
+  }
+  const Vec2 v = q - P.c;
+  const double phi = std::atan2(P.d0.x() * v.y() - P.d0.y() * v.x(), P.d0.dot(v));
+  return Vec2(phi / P.sweep, th);
+}
+}  // namespace
+
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
+  const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
+  // patch_nearest's distance, with Q's window computed once.
+  const GaussWindow win = gauss_window(Q);
+  auto g = [&](const Vec2& q, double c, double s) {
+    Vec2 best;
+    return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, q, c, s)), &best);
+  };
+  const Vec2 p = descend_params(P, bp, g, start, resolution, 0.05);
+  *x = framed_point(P, bp.e1, bp.e2, p.x(), p.y());
   return patch_nearest(Q, *x, y);
+}
+
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec3& near, double resolution, Vec3* x, Vec3* y) {
+  Vec3 e1, e2;
+  axis_frame(P, &e1, &e2);
+  return patch_pair_descent(P, Q, patch_params(P, e1, e2, near), resolution, x, y);
+}
+
+Vec3 patch_deep_point(const Patch& P, const Patch& Q, const Vec3& near, double side, double resolution) {
+  const BoxedPatch bp(P);
+  auto g = [&](const Vec2& q, double c, double s) {
+    return side * patch_surface_function(Q, patch_local(Q, framed_point(P, bp.e1, bp.e2, q, c, s)));
+  };
+  // (A signed function has no minimum near a crossing: the first steps are
+  // long, 0.05 rad took 8 steps to reach a sixth of a sphere zone's depth.)
+  const Vec2 p = descend_params(P, bp, g, patch_params(P, bp.e1, bp.e2, near), resolution, 0.5);
+  return framed_point(P, bp.e1, bp.e2, p.x(), p.y());
 }
 
 bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const Vec3& hi, Vec3* out) {
@@ -680,17 +725,8 @@ bool patch_crossing_point(const Patch& P, const Patch& Q, const Vec3& lo, const 
   axis_frame(P, &e1, &e2);
   // (profile fraction, azimuth) of a point of P.
   auto params = [&](const Vec3& x, double* u, double* th) {
-    Vec3 er;
-    const Vec2 q = patch_local(P, x, &er);
-    *th = std::atan2(er.dot(e2), er.dot(e1));
-    if (P.straight) {
-      const Vec2 d = P.p1 - P.p0;
-      *u = (q - P.p0).dot(d) / d.squaredNorm();
-    } else {
-      const Vec2 v = q - P.c;
-      const double phi = std::atan2(P.d0.x() * v.y() - P.d0.y() * v.x(), P.d0.dot(v));
-      *u = phi / P.sweep;
-    }
+    const Vec2 p = patch_params(P, e1, e2, x);
+    *u = p.x(), *th = p.y();
   };
   auto point = [&](double u, double th) { return framed_point(P, e1, e2, u, th); };
   auto g = [&](const Vec3& x) { return patch_surface_function(Q, patch_local(Q, x)); };

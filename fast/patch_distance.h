@@ -150,6 +150,15 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y);
 // candidate pair (both points genuine, to rounding): nothing is proven about
 // it. Returns their distance.
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y);
+// The same from the parameters of world point `near` (near P).
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec3& near, double resolution, Vec3* x, Vec3* y);
+
+// A point of patch P deep on one side of Q's whole surface (the full torus or
+// cone it lies on): the same descent as patch_pair_descent, of side * g_Q
+// (patch_surface_function, side +1 or -1) over P's parameters, from the
+// parameters of world point `near`. A candidate for the overlap probes of
+// crossing patches (a point of one solid inside the other), not a proof.
+Vec3 patch_deep_point(const Patch& P, const Patch& Q, const Vec3& near, double side, double resolution);
 
 // A point where patch P crosses patch Q, from two points of P on either side
 // of Q's whole surface (the kernel's a_low and a_high): bisection along the
