@@ -1,4 +1,4 @@
-// `revdist bench paper|CASE [--eps 1e-3,1e-4,1e-5] [--frames N] [--json] [--out DIR]`:
+// `revdist bench paper|CASE [--eps 1e-3,1e-4,1e-5] [--frames N] [--json] [--out DIR] [--poses FILE]`:
 // the paper's section 5 experiments against FCL (compare/bench_paper.h); this
 // file parses, shows progress and writes the report (compare/bench_report.h).
 #include <unistd.h>
@@ -30,6 +30,7 @@ struct Options {
   bool no_fcl = false;
   std::string out = "revdist-bench";
   long long seed = -1;
+  std::string poses;
 };
 
 void run(const Options& o) {
@@ -38,6 +39,7 @@ void run(const Options& o) {
   bo.frames = o.frames;
   bo.exact_frames = o.exact_frames;
   bo.fcl = !o.no_fcl;
+  bo.poses_file = o.poses;
   if (o.seed >= 0) {
     bo.seed = static_cast<std::uint64_t>(o.seed);
   } else if (const char* s = std::getenv("REVDIST_SEED")) {
@@ -104,6 +106,9 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", opts->seed, "motion seed (default REVDIST_SEED or 20200501)")->check(finite_number(false));
   cmd->add_flag("--no-fcl", opts->no_fcl, "skip the FCL baseline");
+  cmd->add_option("--poses", opts->poses,
+                  "motion frames file: read when it exists (written by this option for the same target, seed and "
+                  "frames), else written; two builds then time the same poses");
   cmd->add_option("--out", opts->out, "report directory (bench.md, bench.json, fig8/9/12.svg), default revdist-bench");
   cmd->add_flag("--json", opts->json, "print the revdist-bench/1 records on stdout");
   cmd->callback([opts] { run(*opts); });

@@ -3,12 +3,17 @@
 #include "compare/bench_paper.h"
 
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <memory>
 
 #include <Eigen/Geometry>
@@ -203,6 +208,57 @@ MeshSide build_mesh(const Profile& p, double eps) {
   return m;
 }
 
+constexpr char kPosesMagic[] = "revdist-bench-poses/1\n";
+
+template <class T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+// Reads a poses file's fields in order; every problem is an InputError naming the file.
+class PosesReader {
+ public:
+  PosesReader(const std::string& bytes, const std::string& file) : b_(bytes), file_(file) {}
+  template <class T>
+  T get(const char* what) {
+    if (b_.size() - at_ < sizeof(T)) fail(std::string("truncated at ") + what);
+    T v;
+    std::memcpy(&v, b_.data() + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  double number(const char* what) {
+    const double v = get<double>(what);
+    if (!std::isfinite(v)) fail(std::string(what) + " is not finite");
+    return v;
+  }
+  std::string text(const char* what) {
+    const auto n = get<std::uint32_t>(what);
+    if (n > 4096 || b_.size() - at_ < n) fail(std::string(what) + ": bad length");
+    std::string t = b_.substr(at_, n);
+    at_ += n;
+    return t;
+  }
+  void expect_magic() {
+    const std::size_t n = sizeof kPosesMagic - 1;
+    if (b_.compare(0, n, kPosesMagic) != 0) fail("not a revdist-bench-poses/1 file");
+    at_ = n;
+  }
+  void expect_end() {
+    if (at_ != b_.size()) fail(std::to_string(b_.size() - at_) + " bytes after the last frame");
+  }
+  std::size_t left() const { return b_.size() - at_; }
+  [[noreturn]] void fail(const std::string& problem) const { throw InputError(file_ + ": " + problem); }
+
+ private:
+  const std::string& b_;
+  std::string file_;
+  std::size_t at_ = 0;
+};
+
+// The size of one stored frame: 26 doubles and the evaluation count.
+constexpr std::size_t kFrameBytes = 26 * sizeof(double) + sizeof(std::int32_t);
+
 class Runner {
  public:
   Runner(const BenchInput& in, const BenchOptions& o) : in_(in), o_(o) {}
@@ -243,10 +299,28 @@ class Runner {
     return b;
   }
 
-  // Frames (setup queries on the finest trees) and certified distances of the sample frames.
+  // Frames (setup queries on the finest trees, or the poses file) and
+  // certified distances of the sample frames.
   void make_motions() {
+    std::vector<std::string> names;  // the pairs in run order: Figure 12's, then the deformable ones
+    for (std::size_t i = 0; i < in_.statics.size(); ++i)
+      for (std::size_t j = i; j < in_.statics.size(); ++j) names.push_back(in_.statics[i].name + "-" + in_.statics[j].name);
+    for (const auto& d : in_.deformables)
+      for (const auto& st : in_.statics) names.push_back(st.name + "-" + d.name);
+    const bool from_file = !o_.poses_file.empty() && std::filesystem::exists(o_.poses_file);
+    BenchPoses stored;
+    if (from_file) stored = read_poses(names);
+    std::size_t next = 0;  // the next stored pair
+    // The next pair's frames: stored, or placed by `place` and snapped.
+    auto frames_of = [&](auto&& place) {
+      if (from_file) return stored.pairs[next++].second;
+      std::vector<MotionFrame> f = place();
+      snap_to_quaternions(f);
+      return f;
+    };
     std::vector<std::unique_ptr<Built>> fine;
-    for (const auto& s : in_.statics) fine.push_back(build(profile_at(s.def, 0.0), setup_eps_));
+    if (!from_file)
+      for (const auto& s : in_.statics) fine.push_back(build(profile_at(s.def, 0.0), setup_eps_));
     MotionOptions mo;
     mo.frames = o_.frames;
     std::uint64_t seed = o_.seed;
@@ -255,9 +329,10 @@ class Runner {
         PairMotion pm{i, j, in_.statics[i].name + "-" + in_.statics[j].name, {}, {}, {}};
         say("motion frames: " + pm.name);
         mo.seed = seed++;
-        const Built* fb = fine[j].get();
-        pm.frames = near_contact_motion(fine[i]->posed(), [fb](int) { return fb->posed(); }, mo);
-        snap_to_quaternions(pm.frames);
+        pm.frames = frames_of([&] {
+          const Built* fb = fine[j].get();
+          return near_contact_motion(fine[i]->posed(), [fb](int) { return fb->posed(); }, mo);
+        });
         certify(pm, [this, i](int) { return profile_at(in_.statics[i].def, 0.0); },
                 [this, j](int) { return profile_at(in_.statics[j].def, 0.0); });
         motions_.push_back(std::move(pm));
@@ -265,19 +340,75 @@ class Runner {
     }
     for (std::size_t d = 0; d < in_.deformables.size(); ++d) {
       const SolidDef& def = in_.deformables[d].def;
-      const Morph m = build_morph(def, setup_eps_, o_.frames);
-      const Morph* mp = &m;
+      std::unique_ptr<Morph> m;
+      if (!from_file) m = std::make_unique<Morph>(build_morph(def, setup_eps_, o_.frames));
+      const Morph* mp = m.get();
       for (std::size_t i = 0; i < in_.statics.size(); ++i) {
         PairMotion pm{i, d, in_.statics[i].name + "-" + in_.deformables[d].name, {}, {}, {}};
         say("motion frames: " + pm.name);
         mo.seed = seed++;
-        pm.frames = near_contact_motion(fine[i]->posed(), [mp](int f) { return mp->frames[f]->posed(); }, mo);
-        snap_to_quaternions(pm.frames);
+        pm.frames = frames_of([&] {
+          return near_contact_motion(fine[i]->posed(), [mp](int f) { return mp->frames[f]->posed(); }, mo);
+        });
         certify(pm, [this, i](int) { return profile_at(in_.statics[i].def, 0.0); },
                 [this, &def](int f) { return profile_at(def, morph_time(def, f, o_.frames)); });
         deforms_.push_back(std::move(pm));
       }
     }
+    if (!from_file && !o_.poses_file.empty()) write_poses();
+  }
+
+  // The poses file, checked against this run before any frame is used.
+  BenchPoses read_poses(const std::vector<std::string>& names) const {
+    const std::string& file = o_.poses_file;
+    // No more than this run's frames can take (a file of gigabytes is refused unread).
+    const std::uintmax_t most = 8192 + names.size() * (4100 + static_cast<std::uintmax_t>(o_.frames) * kFrameBytes);
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec) throw InputError(file + ": cannot read (" + ec.message() + ")");
+    if (size > most) throw InputError(file + ": larger than the poses of this run (" + std::to_string(names.size()) +
+                                      " pairs of " + std::to_string(o_.frames) + " frames)");
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (!in) throw InputError(file + ": cannot read");
+    BenchPoses p = decode_bench_poses(ss.str(), file);
+    auto mismatch = [&](const std::string& what) {
+      throw InputError(file + ": poses of another run (" + what + "); remove it or pass another --poses");
+    };
+    if (p.source != in_.source) mismatch("source " + quote(p.source));
+    if (p.seed != o_.seed) mismatch("seed " + std::to_string(p.seed));
+    if (p.frames != o_.frames) mismatch(std::to_string(p.frames) + " frames");
+    if (p.pairs.size() != names.size()) mismatch(std::to_string(p.pairs.size()) + " pairs");
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (p.pairs[k].first != names[k]) mismatch("pair " + quote(p.pairs[k].first) + " where this run has " + quote(names[k]));
+    say("motion frames from " + file);
+    return p;
+  }
+
+  // Writes this run's frames to the poses file (a temporary file renamed over it).
+  void write_poses() const {
+    BenchPoses p;
+    p.source = in_.source, p.seed = o_.seed, p.frames = o_.frames;
+    for (const auto* set : {&motions_, &deforms_})
+      for (const PairMotion& pm : *set) p.pairs.emplace_back(pm.name, pm.frames);
+    const std::string bytes = encode_bench_poses(p);
+    const std::string tmp = o_.poses_file + ".tmp" + std::to_string(static_cast<long>(getpid()));
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      if (!out) {
+        std::filesystem::remove(tmp);
+        throw InputError(o_.poses_file + ": cannot write");
+      }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, o_.poses_file, ec);
+    if (ec) {
+      std::filesystem::remove(tmp);
+      throw InputError(o_.poses_file + ": cannot write (" + ec.message() + ")");
+    }
+    say("motion frames written to " + o_.poses_file);
   }
 
   void certify(PairMotion& pm, const std::function<Profile(int)>& pa, const std::function<Profile(int)>& pb) {
@@ -489,6 +620,64 @@ BenchInput case_bench_input(const std::string& case_file) {
   for (const SolidDef& s : c.solids) (s.deformable() ? in.deformables : in.statics).push_back({s.name, s});
   if (in.statics.empty()) throw InputError(case_file + ": no static solid to benchmark (keyframed solids play Mt against static ones)");
   return in;
+}
+
+std::string encode_bench_poses(const BenchPoses& poses) {
+  std::string out(kPosesMagic);
+  put(out, poses.seed);
+  put(out, static_cast<std::int32_t>(poses.frames));
+  put(out, static_cast<std::int32_t>(poses.pairs.size()));
+  auto text = [&](const std::string& t) {
+    put(out, static_cast<std::uint32_t>(t.size()));
+    out += t;
+  };
+  text(poses.source);
+  for (const auto& [name, frames] : poses.pairs) {
+    text(name);
+    put(out, static_cast<std::int32_t>(frames.size()));
+    for (const MotionFrame& f : frames) {
+      for (const double* m : {f.R_WA.data(), f.t_WA.data(), f.R_WB.data(), f.t_WB.data()})
+        out.append(reinterpret_cast<const char*>(m), (m == f.t_WA.data() || m == f.t_WB.data() ? 3 : 9) * sizeof(double));
+      put(out, f.target);
+      put(out, f.achieved);
+      put(out, static_cast<std::int32_t>(f.evaluations));
+    }
+  }
+  return out;
+}
+
+BenchPoses decode_bench_poses(const std::string& bytes, const std::string& file) {
+  PosesReader r(bytes, file);
+  r.expect_magic();
+  BenchPoses p;
+  p.seed = r.get<std::uint64_t>("seed");
+  p.frames = r.get<std::int32_t>("frames");
+  const std::int32_t pairs = r.get<std::int32_t>("pairs");
+  if (p.frames < 1 || pairs < 0 || pairs > 100000) r.fail("frames or pairs out of range");
+  p.source = r.text("source");
+  for (std::int32_t k = 0; k < pairs; ++k) {
+    std::string name = r.text("pair name");
+    const std::int32_t n = r.get<std::int32_t>("frame count");
+    if (n != p.frames) r.fail("pair " + quote(name) + " holds " + std::to_string(n) + " frames, the header says " +
+                              std::to_string(p.frames));
+    if (r.left() / kFrameBytes < static_cast<std::size_t>(n)) r.fail("truncated in pair " + quote(name));
+    std::vector<MotionFrame> frames(n);
+    for (MotionFrame& f : frames) {
+      for (double* m : {f.R_WA.data(), f.t_WA.data(), f.R_WB.data(), f.t_WB.data()}) {
+        const int count = m == f.t_WA.data() || m == f.t_WB.data() ? 3 : 9;
+        for (int i = 0; i < count; ++i) m[i] = r.number("a pose coordinate");
+      }
+      f.target = r.number("a target gap");
+      f.achieved = r.get<double>("an achieved gap");  // NaN when the setup never measured it
+      f.evaluations = r.get<std::int32_t>("an evaluation count");
+      for (const Mat3* R : {&f.R_WA, &f.R_WB})
+        if (!((R->transpose() * *R - Mat3::Identity()).cwiseAbs().maxCoeff() <= 1e-9))
+          r.fail("pair " + quote(name) + ": a rotation is not orthonormal");
+    }
+    p.pairs.emplace_back(std::move(name), std::move(frames));
+  }
+  r.expect_end();
+  return p;
 }
 
 void check_bench(const BenchInput& input, const BenchOptions& options) {

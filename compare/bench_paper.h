@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/motion.h"
 #include "core/profile.h"
 
 namespace revdist {
@@ -26,6 +27,12 @@ struct BenchOptions {
   double proven_tol = 1e-6;      // the proven mode timed beside tol = 2 eps
   std::uint64_t seed = 20200501;
   bool fcl = true;
+  // The motion frames' file (`--poses`): read when it exists (it must be one
+  // this option wrote for the same source, seed, frames and pairs), else the
+  // frames are placed as usual and written there. The frames are placed by
+  // root-finding on the fast engine's distances, so two builds place slightly
+  // different poses; with one file both time the same ones. Empty: no file.
+  std::string poses_file;
   // Called with one line of progress at a time (no newline).
   std::function<void(const std::string&)> progress;
 };
@@ -92,6 +99,23 @@ struct BenchResult {
   std::vector<BenchRecord> records;
   double cpu_s = 0.0;  // thread CPU time of the whole run
 };
+
+// The motion frames of a run as `poses_file` keeps them, pair by pair in the
+// run's order (the Figure 12 pairs, then the deformable ones).
+struct BenchPoses {
+  std::string source;
+  std::uint64_t seed = 0;
+  int frames = 0;
+  std::vector<std::pair<std::string, std::vector<MotionFrame>>> pairs;
+};
+// Binary: a magic line "revdist-bench-poses/1", the header, then each pair's
+// name and frames (rotations, translations, target, achieved gap, setup
+// evaluations); doubles bit for bit.
+std::string encode_bench_poses(const BenchPoses& poses);
+// The inverse; an InputError naming `file` and the problem for anything that
+// is not such a file (wrong magic, truncated, trailing bytes, a count or name
+// out of range, a value not finite, a rotation not orthonormal to 1e-9).
+BenchPoses decode_bench_poses(const std::string& bytes, const std::string& file);
 
 // Refuses, with an InputError and before any work, what the run could not do:
 // no eps, frames < 1, an eps below what doubles resolve for a solid (1e-12 of

@@ -108,6 +108,30 @@ TEST(BenchCli, CaseWithCertifiedSample) {
   std::filesystem::remove_all(out);
 }
 
+// --poses: the first run writes the motion frames, the second reads them (the
+// same poses for two builds), a run that does not match them is refused.
+TEST(BenchCli, PosesFileWrittenThenReadThenRefusedForAnotherRun) {
+  const std::string tmp = testing::TempDir() + "revdist_poses_" + std::to_string(getpid());
+  const std::string poses = tmp + ".bin";
+  std::filesystem::remove(poses);
+  const std::string args = "bench paper --eps 1e-3 --exact-frames 0 --no-fcl --poses " + poses + " --out " + tmp;
+  const CommandRun w = run(args + " --frames 2");
+  ASSERT_EQ(w.status, 0) << w.err;
+  EXPECT_NE(w.err.find("motion frames written to " + poses), std::string::npos) << w.err;
+  ASSERT_TRUE(std::filesystem::exists(poses));
+  const std::string bytes = read(poses);
+  const CommandRun r = run(args + " --frames 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("motion frames from " + poses), std::string::npos) << r.err;
+  EXPECT_EQ(read(poses), bytes);  // read, not rewritten
+  const CommandRun x = run(args + " --frames 3");
+  EXPECT_EQ(x.status, 2);
+  const std::string last = x.err.substr(x.err.rfind('\n', x.err.size() - 2) + 1);
+  EXPECT_NE(last.find(poses + ": poses of another run (2 frames)"), std::string::npos) << x.err;
+  std::filesystem::remove(poses);
+  std::filesystem::remove_all(tmp);
+}
+
 TEST(BenchCli, BadInputExitsTwo) {
   const std::string out = " --out " + testing::TempDir() + "revdist_bench_bad";
   EXPECT_EQ(run("bench " + src("cases/no-such-file.json") + out).status, 2);

@@ -5,8 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <string>
 
+#include "compare/bench_paper.h"
 #include "compare/motion.h"
+#include "core/input_error.h"
 #include "core/case_io.h"
 #include "fast/biarc_tree.h"
 
@@ -79,6 +83,74 @@ TEST(NearContactMotion, SameSeedSameFrames) {
   o.seed = 2;
   const auto f3 = near_contact_motion(A, [&](int) { return A; }, o);
   EXPECT_NE(f1[1].t_WB, f3[1].t_WB);
+}
+
+
+// The poses file of `revdist bench --poses` (compare/bench_paper.h): the frames
+// come back bit for bit, and anything else is refused with one line naming
+// the file.
+TEST(BenchPoses, RoundTripAndRefusals) {
+  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/models/paper_pairs.json");
+  const Profile pa = profile_at(solid(c, "cup"), 0), pb = profile_at(solid(c, "pawn"), 0);
+  const BiarcTree ta = build_biarc_tree(pa, 1e-4), tb = build_biarc_tree(pb, 1e-4);
+  PosedSolid A{&pa, &ta}, B{&pb, &tb};
+  MotionOptions o;
+  o.frames = 5;
+  o.seed = test_seed();
+  BenchPoses p;
+  p.source = "paper", p.seed = 42, p.frames = 5;
+  p.pairs.emplace_back("cup-pawn", near_contact_motion(A, [&](int) { return B; }, o));
+  p.pairs.emplace_back("pawn-pawn", near_contact_motion(B, [&](int) { return B; }, o));
+  const std::string bytes = encode_bench_poses(p);
+  const BenchPoses q = decode_bench_poses(bytes, "f.bin");
+  EXPECT_EQ(q.source, "paper");
+  EXPECT_EQ(q.seed, 42u);
+  EXPECT_EQ(q.frames, 5);
+  ASSERT_EQ(q.pairs.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(q.pairs[k].first, p.pairs[k].first);
+    ASSERT_EQ(q.pairs[k].second.size(), 5u);
+    for (int j = 0; j < 5; ++j) {
+      const MotionFrame &x = p.pairs[k].second[j], &y = q.pairs[k].second[j];
+      EXPECT_EQ(std::memcmp(x.R_WA.data(), y.R_WA.data(), 9 * sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(x.R_WB.data(), y.R_WB.data(), 9 * sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(x.t_WA.data(), y.t_WA.data(), 3 * sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(x.t_WB.data(), y.t_WB.data(), 3 * sizeof(double)), 0);
+      EXPECT_EQ(x.target, y.target);
+      EXPECT_EQ(x.evaluations, y.evaluations);
+    }
+  }
+  // Refusals: one line naming the file and the problem.
+  auto refused = [](const std::string& b, const std::string& problem) {
+    try {
+      decode_bench_poses(b, "f.bin");
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("f.bin: ", 0), 0u) << m;
+      EXPECT_NE(m.find(problem), std::string::npos) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+      return;
+    }
+    ADD_FAILURE() << "accepted: " << problem;
+  };
+  refused("", "not a revdist-bench-poses/1 file");
+  refused("revdist-bench-poses/2\n" + bytes.substr(22), "not a revdist-bench-poses/1 file");
+  refused(bytes.substr(0, bytes.size() - 1), "truncated");
+  refused(bytes.substr(0, 40), "truncated");
+  refused(bytes + "x", "1 bytes after the last frame");
+  // The first frame's first coordinate: after the magic, header and both names.
+  const std::size_t first = 22 + 8 + 4 + 4 + 4 + 5 + 4 + 8 + 4;
+  std::string nan = bytes;
+  const double q_nan = std::nan("");
+  std::memcpy(&nan[first], &q_nan, sizeof q_nan);
+  refused(nan, "not finite");
+  std::string skew = bytes;
+  const double two = 2.0;
+  std::memcpy(&skew[first], &two, sizeof two);
+  refused(skew, "not orthonormal");
+  BenchPoses r = p;
+  r.pairs[1].second.pop_back();
+  refused(encode_bench_poses(r), "holds 4 frames, the header says 5");
 }
 
 }  // namespace
