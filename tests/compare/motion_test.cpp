@@ -2,6 +2,8 @@
 // its plan, the motion is continuous, and the planned overlaps really overlap.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,17 +92,23 @@ TEST(NearContactMotion, SameSeedSameFrames) {
 // come back bit for bit, and anything else is refused with one line naming
 // the file.
 TEST(BenchPoses, RoundTripAndRefusals) {
-  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/models/paper_pairs.json");
-  const Profile pa = profile_at(solid(c, "cup"), 0), pb = profile_at(solid(c, "pawn"), 0);
-  const BiarcTree ta = build_biarc_tree(pa, 1e-4), tb = build_biarc_tree(pb, 1e-4);
-  PosedSolid A{&pa, &ta}, B{&pb, &tb};
-  MotionOptions o;
-  o.frames = 5;
-  o.seed = test_seed();
+  // Frames of any motion will do: rotations about skew axes, translations and
+  // gaps with full mantissas.
+  auto frames = [](double k) {
+    std::vector<MotionFrame> f(5);
+    for (int j = 0; j < 5; ++j) {
+      f[j].R_WA = Eigen::AngleAxisd(0.1 * j + k, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+      f[j].R_WB = Eigen::AngleAxisd(1.0 / 3 + j, Vec3(-2, 1, 0.5).normalized()).toRotationMatrix();
+      f[j].t_WA = Vec3(std::sqrt(2.0) * j, -k / 7, 1e-9 * j);
+      f[j].t_WB = Vec3(M_PI, std::exp(k + j), -1.0 / 3);
+      f[j].target = (j - 2) * 1e-3 / 3, f[j].achieved = j == 2 ? NAN : f[j].target, f[j].evaluations = 3 * j;
+    }
+    return f;
+  };
   BenchPoses p;
   p.source = "paper", p.seed = 42, p.frames = 5;
-  p.pairs.emplace_back("cup-pawn", near_contact_motion(A, [&](int) { return B; }, o));
-  p.pairs.emplace_back("pawn-pawn", near_contact_motion(B, [&](int) { return B; }, o));
+  p.pairs.emplace_back("cup-pawn", frames(0.25));
+  p.pairs.emplace_back("pawn-pawn", frames(1.5));
   const std::string bytes = encode_bench_poses(p);
   const BenchPoses q = decode_bench_poses(bytes, "f.bin");
   EXPECT_EQ(q.source, "paper");
@@ -117,6 +125,8 @@ TEST(BenchPoses, RoundTripAndRefusals) {
       EXPECT_EQ(std::memcmp(x.t_WA.data(), y.t_WA.data(), 3 * sizeof(double)), 0);
       EXPECT_EQ(std::memcmp(x.t_WB.data(), y.t_WB.data(), 3 * sizeof(double)), 0);
       EXPECT_EQ(x.target, y.target);
+      EXPECT_EQ(std::isnan(x.achieved), std::isnan(y.achieved));
+      if (!std::isnan(x.achieved)) EXPECT_EQ(x.achieved, y.achieved);
       EXPECT_EQ(x.evaluations, y.evaluations);
     }
   }
