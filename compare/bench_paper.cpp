@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -259,6 +260,22 @@ class PosesReader {
 // The size of one stored frame: 26 doubles and the evaluation count.
 constexpr std::size_t kFrameBytes = 26 * sizeof(double) + sizeof(std::int32_t);
 
+// A frame's pose arrays in stored order (rotations column-major), with their lengths.
+struct PoseArray {
+  double* p;
+  int n;
+};
+std::array<PoseArray, 4> pose_arrays(MotionFrame& f) {
+  return {{{f.R_WA.data(), 9}, {f.t_WA.data(), 3}, {f.R_WB.data(), 9}, {f.t_WB.data(), 3}}};
+}
+
+// The exact size of a poses file for these source and pair names, n frames each.
+std::uintmax_t poses_bytes(const std::string& source, const std::vector<std::string>& names, int n) {
+  std::uintmax_t size = (sizeof kPosesMagic - 1) + 8 + 4 + 4 + 4 + source.size();
+  for (const std::string& name : names) size += 4 + name.size() + 4 + static_cast<std::uintmax_t>(n) * kFrameBytes;
+  return size;
+}
+
 class Runner {
  public:
   Runner(const BenchInput& in, const BenchOptions& o) : in_(in), o_(o) {}
@@ -307,9 +324,22 @@ class Runner {
       for (std::size_t j = i; j < in_.statics.size(); ++j) names.push_back(in_.statics[i].name + "-" + in_.statics[j].name);
     for (const auto& d : in_.deformables)
       for (const auto& st : in_.statics) names.push_back(st.name + "-" + d.name);
-    const bool from_file = !o_.poses_file.empty() && std::filesystem::exists(o_.poses_file);
+    std::vector<std::pair<double, double>> reaches;  // each pair's two solids' reach (profile_reach), in run order
+    auto reach = [](const SolidDef& d) {
+      double r = 0;
+      for (const Profile& p : d.keyframes) r = std::max(r, profile_reach(p));
+      return r;
+    };
+    for (std::size_t i = 0; i < in_.statics.size(); ++i)
+      for (std::size_t j = i; j < in_.statics.size(); ++j) reaches.emplace_back(reach(in_.statics[i].def), reach(in_.statics[j].def));
+    for (const auto& d : in_.deformables)
+      for (const auto& st : in_.statics) reaches.emplace_back(reach(st.def), reach(d.def));
+    std::error_code ec;
+    const bool from_file = !o_.poses_file.empty() && std::filesystem::exists(o_.poses_file, ec);
+    if (ec) throw InputError(o_.poses_file + ": cannot read (" + ec.message() + ")");
     BenchPoses stored;
-    if (from_file) stored = read_poses(names);
+    if (from_file) stored = read_poses(names, reaches);
+    else if (!o_.poses_file.empty()) check_poses_writable();
     std::size_t next = 0;  // the next stored pair
     // The next pair's frames: stored, or placed by `place` and snapped.
     auto frames_of = [&](auto&& place) {
@@ -359,29 +389,36 @@ class Runner {
   }
 
   // The poses file, checked against this run before any frame is used.
-  BenchPoses read_poses(const std::vector<std::string>& names) const {
+  BenchPoses read_poses(const std::vector<std::string>& names,
+                        const std::vector<std::pair<double, double>>& reaches) const {
     const std::string& file = o_.poses_file;
-    // No more than this run's frames can take (a file of gigabytes is refused unread).
-    const std::uintmax_t most = 8192 + names.size() * (4100 + static_cast<std::uintmax_t>(o_.frames) * kFrameBytes);
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(file, ec);
-    if (ec) throw InputError(file + ": cannot read (" + ec.message() + ")");
-    if (size > most) throw InputError(file + ": larger than the poses of this run (" + std::to_string(names.size()) +
-                                      " pairs of " + std::to_string(o_.frames) + " frames)");
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in) throw InputError(file + ": cannot read");
-    BenchPoses p = decode_bench_poses(ss.str(), file);
     auto mismatch = [&](const std::string& what) {
       throw InputError(file + ": poses of another run (" + what + "); remove it or pass another --poses");
     };
+    // Its size is known from this run: any other is refused unread.
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec) throw InputError(file + ": cannot read (" + ec.message() + ")");
+    if (size != poses_bytes(in_.source, names, o_.frames))
+      mismatch(std::to_string(size) + " bytes, not those of " + std::to_string(names.size()) + " pairs of " +
+               std::to_string(o_.frames) + " frames");
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    std::ifstream in(file, std::ios::binary);
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) throw InputError(file + ": cannot read");
+    BenchPoses p = decode_bench_poses(bytes, file);
     if (p.source != in_.source) mismatch("source " + quote(p.source));
     if (p.seed != o_.seed) mismatch("seed " + std::to_string(p.seed));
     if (p.frames != o_.frames) mismatch(std::to_string(p.frames) + " frames");
     if (p.pairs.size() != names.size()) mismatch(std::to_string(p.pairs.size()) + " pairs");
-    for (std::size_t k = 0; k < names.size(); ++k)
+    for (std::size_t k = 0; k < names.size(); ++k) {
       if (p.pairs[k].first != names[k]) mismatch("pair " + quote(p.pairs[k].first) + " where this run has " + quote(names[k]));
+      // The motion keeps A at its place and B within twice their reaches of it:
+      // a pose far beyond (which would cost the certified engine minutes) is not one of its frames.
+      const double far = 4 * (reaches[k].first + reaches[k].second);
+      for (const MotionFrame& f : p.pairs[k].second)
+        if (!(f.t_WA.norm() <= far && (f.t_WB - f.t_WA).norm() <= far))
+          throw InputError(file + ": pair " + quote(names[k]) + ": a pose far beyond the motion's reach");
+    }
     say("motion frames from " + file);
     return p;
   }
@@ -393,22 +430,37 @@ class Runner {
     for (const auto* set : {&motions_, &deforms_})
       for (const PairMotion& pm : *set) p.pairs.emplace_back(pm.name, pm.frames);
     const std::string bytes = encode_bench_poses(p);
-    const std::string tmp = o_.poses_file + ".tmp" + std::to_string(static_cast<long>(getpid()));
+    const std::string tmp = poses_tmp();
+    std::error_code ec;
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
       out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      out.close();
       if (!out) {
-        std::filesystem::remove(tmp);
+        std::filesystem::remove(tmp, ec);
         throw InputError(o_.poses_file + ": cannot write");
       }
     }
-    std::error_code ec;
     std::filesystem::rename(tmp, o_.poses_file, ec);
     if (ec) {
-      std::filesystem::remove(tmp);
-      throw InputError(o_.poses_file + ": cannot write (" + ec.message() + ")");
+      const std::string why = ec.message();
+      std::filesystem::remove(tmp, ec);
+      throw InputError(o_.poses_file + ": cannot write (" + why + ")");
     }
     say("motion frames written to " + o_.poses_file);
+  }
+
+  std::string poses_tmp() const { return o_.poses_file + ".tmp" + std::to_string(static_cast<long>(getpid())); }
+
+  // Before any frame is placed: a poses file that cannot be written is refused now, not after the motions.
+  void check_poses_writable() const {
+    const std::string tmp = poses_tmp();
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    const bool ok = static_cast<bool>(out);
+    out.close();
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    if (!ok) throw InputError(o_.poses_file + ": cannot write");
   }
 
   void certify(PairMotion& pm, const std::function<Profile(int)>& pa, const std::function<Profile(int)>& pb) {
@@ -635,9 +687,8 @@ std::string encode_bench_poses(const BenchPoses& poses) {
   for (const auto& [name, frames] : poses.pairs) {
     text(name);
     put(out, static_cast<std::int32_t>(frames.size()));
-    for (const MotionFrame& f : frames) {
-      for (const double* m : {f.R_WA.data(), f.t_WA.data(), f.R_WB.data(), f.t_WB.data()})
-        out.append(reinterpret_cast<const char*>(m), (m == f.t_WA.data() || m == f.t_WB.data() ? 3 : 9) * sizeof(double));
+    for (MotionFrame f : frames) {
+      for (const PoseArray& a : pose_arrays(f)) out.append(reinterpret_cast<const char*>(a.p), a.n * sizeof(double));
       put(out, f.target);
       put(out, f.achieved);
       put(out, static_cast<std::int32_t>(f.evaluations));
@@ -663,15 +714,14 @@ BenchPoses decode_bench_poses(const std::string& bytes, const std::string& file)
     if (r.left() / kFrameBytes < static_cast<std::size_t>(n)) r.fail("truncated in pair " + quote(name));
     std::vector<MotionFrame> frames(n);
     for (MotionFrame& f : frames) {
-      for (double* m : {f.R_WA.data(), f.t_WA.data(), f.R_WB.data(), f.t_WB.data()}) {
-        const int count = m == f.t_WA.data() || m == f.t_WB.data() ? 3 : 9;
-        for (int i = 0; i < count; ++i) m[i] = r.number("a pose coordinate");
-      }
+      for (const PoseArray& a : pose_arrays(f))
+        for (int i = 0; i < a.n; ++i) a.p[i] = r.number("a pose coordinate");
       f.target = r.number("a target gap");
-      f.achieved = r.get<double>("an achieved gap");  // NaN when the setup never measured it
+      f.achieved = r.number("an achieved gap");
       f.evaluations = r.get<std::int32_t>("an evaluation count");
+      if (f.achieved < 0 || f.evaluations < 0) r.fail("pair " + quote(name) + ": a negative gap or evaluation count");
       for (const Mat3* R : {&f.R_WA, &f.R_WB})
-        if (!((R->transpose() * *R - Mat3::Identity()).cwiseAbs().maxCoeff() <= 1e-9))
+        if (!((R->transpose() * *R - Mat3::Identity()).cwiseAbs().maxCoeff() <= 1e-9) || !(R->determinant() > 0))
           r.fail("pair " + quote(name) + ": a rotation is not orthonormal");
     }
     p.pairs.emplace_back(std::move(name), std::move(frames));

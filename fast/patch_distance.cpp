@@ -628,7 +628,10 @@ Vec2 descend_params(const Patch& P, const BoxedPatch& bp, G&& g, const Vec2& sta
   // azimuths, those at th -+ ht by angle addition: 4 trigonometric calls an
   // iteration, not 10.
   const double c_ht = std::cos(ht), s_ht = std::sin(ht);
-  double u = std::clamp(start.x(), 0.0, 1.0), th = start.y();
+  // (A start that is not finite, from a point on the axis or a degenerate
+  // patch, starts at the middle.)
+  double u = std::isfinite(start.x()) ? std::clamp(start.x(), 0.0, 1.0) : 0.5;
+  double th = std::isfinite(start.y()) ? start.y() : 0.0;
   double fu = f(u, th);
   for (int it = 0; it < 8; ++it) {
     // Central differences (one-sided at the ends of [0, 1]).
@@ -680,13 +683,15 @@ Vec2 patch_params(const Patch& P, const Vec3& e1, const Vec3& e2, const Vec3& x)
   Vec3 er;
   const Vec2 q = patch_local(P, x, &er);
   const double th = std::atan2(er.dot(e2), er.dot(e1));
+  // (A patch of no length: its middle.)
   if (P.straight) {
     const Vec2 d = P.p1 - P.p0;
-    return Vec2((q - P.p0).dot(d) / d.squaredNorm(), th);
+    const double len2 = d.squaredNorm();
+    return Vec2(len2 > 0 ? (q - P.p0).dot(d) / len2 : 0.5, th);
   }
   const Vec2 v = q - P.c;
   const double phi = std::atan2(P.d0.x() * v.y() - P.d0.y() * v.x(), P.d0.dot(v));
-  return Vec2(phi / P.sweep, th);
+  return Vec2(P.sweep != 0 ? phi / P.sweep : 0.5, th);
 }
 }  // namespace
 

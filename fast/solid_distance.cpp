@@ -274,14 +274,15 @@ struct Solid {
     return best;
   }
 
-  // The patch of fit f's arc nearest world point x.
+  // The patch of fit f's arc nearest world point x (arcs of no length only
+  // when the fit has no other).
   Patch nearest_patch(const BiarcFit& f, const Vec3& x) const {
     Patch best = make_patch(f.arc[0], s.R, s.t);
-    Vec3 y;
-    double best_d = patch_nearest(best, x, &y);
-    for (int k = 1; k < f.arcs; ++k) {
+    double best_d = kInf;
+    for (int k = 0; k < f.arcs; ++k) {
       if (f.arc[k].length <= 0) continue;
       const Patch p = make_patch(f.arc[k], s.R, s.t);
+      Vec3 y;
       if (const double d = patch_nearest(p, x, &y); d < best_d) best_d = d, best = p;
     }
     return best;
@@ -570,7 +571,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     {
       Vec3 xs, ys2;
       patch_pair_descent(A.nearest_patch(fx, x), B.nearest_patch(fy, y), x, 1e-3 * opt.tol, &xs, &ys2);
-      x = xs, y = ys2;
+      if (xs.allFinite() && ys2.allFinite()) x = xs, y = ys2;
     }
     offer(A.true_point(fx, x), B.true_point(fy, y));
   }

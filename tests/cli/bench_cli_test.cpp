@@ -124,10 +124,19 @@ TEST(BenchCli, PosesFileWrittenThenReadThenRefusedForAnotherRun) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("motion frames from " + poses), std::string::npos) << r.err;
   EXPECT_EQ(read(poses), bytes);  // read, not rewritten
+  // Refused, one line naming the file: another run's poses (its size is not
+  // this run's), and a file of the right size that is not a poses file.
+  auto last_line = [](const std::string& err) { return err.substr(err.rfind('\n', err.size() - 2) + 1); };
   const CommandRun x = run(args + " --frames 3");
   EXPECT_EQ(x.status, 2);
-  const std::string last = x.err.substr(x.err.rfind('\n', x.err.size() - 2) + 1);
-  EXPECT_NE(last.find(poses + ": poses of another run (2 frames)"), std::string::npos) << x.err;
+  EXPECT_EQ(last_line(x.err).rfind("revdist: " + poses + ": poses of another run (", 0), 0u) << x.err;
+  {
+    std::ofstream f(poses, std::ios::binary | std::ios::trunc);
+    f << std::string(bytes.size(), 'x');
+  }
+  const CommandRun y = run(args + " --frames 2");
+  EXPECT_EQ(y.status, 2);
+  EXPECT_EQ(last_line(y.err), "revdist: " + poses + ": not a revdist-bench-poses/1 file\n") << y.err;
   std::filesystem::remove(poses);
   std::filesystem::remove_all(tmp);
 }

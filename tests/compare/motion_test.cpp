@@ -101,7 +101,7 @@ TEST(BenchPoses, RoundTripAndRefusals) {
       f[j].R_WB = Eigen::AngleAxisd(1.0 / 3 + j, Vec3(-2, 1, 0.5).normalized()).toRotationMatrix();
       f[j].t_WA = Vec3(std::sqrt(2.0) * j, -k / 7, 1e-9 * j);
       f[j].t_WB = Vec3(M_PI, std::exp(k + j), -1.0 / 3);
-      f[j].target = (j - 2) * 1e-3 / 3, f[j].achieved = j == 2 ? NAN : f[j].target, f[j].evaluations = 3 * j;
+      f[j].target = (j - 2) * 1e-3 / 3, f[j].achieved = std::max(f[j].target, 0.0), f[j].evaluations = 3 * j;
     }
     return f;
   };
@@ -125,8 +125,7 @@ TEST(BenchPoses, RoundTripAndRefusals) {
       EXPECT_EQ(std::memcmp(x.t_WA.data(), y.t_WA.data(), 3 * sizeof(double)), 0);
       EXPECT_EQ(std::memcmp(x.t_WB.data(), y.t_WB.data(), 3 * sizeof(double)), 0);
       EXPECT_EQ(x.target, y.target);
-      EXPECT_EQ(std::isnan(x.achieved), std::isnan(y.achieved));
-      if (!std::isnan(x.achieved)) EXPECT_EQ(x.achieved, y.achieved);
+      EXPECT_EQ(x.achieved, y.achieved);
       EXPECT_EQ(x.evaluations, y.evaluations);
     }
   }
@@ -158,6 +157,15 @@ TEST(BenchPoses, RoundTripAndRefusals) {
   const double two = 2.0;
   std::memcpy(&skew[first], &two, sizeof two);
   refused(skew, "not orthonormal");
+  BenchPoses mirrored = p;  // orthonormal, but a reflection
+  mirrored.pairs[0].second[3].R_WB.col(0) *= -1;
+  refused(encode_bench_poses(mirrored), "not orthonormal");
+  BenchPoses negative = p;
+  negative.pairs[1].second[0].achieved = -1e-3;
+  refused(encode_bench_poses(negative), "a negative gap or evaluation count");
+  BenchPoses unmeasured = p;
+  unmeasured.pairs[1].second[4].achieved = NAN;
+  refused(encode_bench_poses(unmeasured), "an achieved gap is not finite");
   BenchPoses r = p;
   r.pairs[1].second.pop_back();
   refused(encode_bench_poses(r), "holds 4 frames, the header says 5");

@@ -672,6 +672,20 @@ TEST(SolidDistanceOverlap, ShallowerThanTolIsStillProven) {
   }
 }
 
+// Overlaps that the deep points of crossing patches prove (patch_deep_point,
+// mapped to the input curve and found inside the other solid), frames of the
+// motion probe at eps 1e-5: before any enumeration of crossing patches, which
+// each of them ran without that probe (1.1 and 1.8 M instructions a query).
+TEST(SolidDistanceOverlap, CrossingPatchesProvenByTheirDeepPoints) {
+  for (const char* f : {"cases/regressions/solid_overlap_deep_points_lightmils.json",
+                        "cases/regressions/solid_overlap_deep_points_cups.json"}) {
+    Loaded L(source_path(f), kEps);
+    const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
+    EXPECT_TRUE(r.overlap) << f << ": " << describe(r);
+    EXPECT_EQ(r.stats.patch_pairs, 0) << f << ": " << describe(r);
+  }
+}
+
 // Two linked rings with perpendicular axes (a scene's): the closed-form bounds
 // of inner node pairs stay below the cut for most of them, and the query popped
 // 4187 node pairs for 92 leaf pairs; the circles' distance for inner pairs of
