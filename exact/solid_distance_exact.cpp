@@ -896,6 +896,21 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     if (!queue.empty()) m = std::min(m, queue.top().lower);
     return m;
   };
+  // A point strictly inside the other solid near the best pair, on its
+  // parametrised side: steps of 1e-2 down to 1e-6 in both parameters.
+  // (Crossing surfaces keep the lower bound at 0 along a curve; a step off
+  // the crossing goes in.)
+  auto inside_near_best = [&](Vec3* p) {
+    const Job& job = solver.jobs[best.job];
+    const double uc = 0.5 * (best.lo[0] + best.hi[0]), sc = 0.5 * (best.lo[1] + best.hi[1]);
+    for (double d : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6})
+      for (int du = -1; du <= 1; ++du)
+        for (int ds = -1; ds <= 1; ++ds) {
+          const double u = std::clamp(uc + du * d, 0.0, 1.0), s = std::clamp(sc + ds * d, 0.0, 2.0);
+          if (solver.test_point(job.s_side, job.s_elem, u, s, p) == Inside::inside) return true;
+        }
+    return false;
+  };
   long pops = 0;
   bool budget_hit = false;
   const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -930,15 +945,8 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     // Crossing surfaces keep the lower bound at 0 along a curve: look for a proof
     // of overlap near the best pair now and then.
     if (top.lower <= 0.0 && pops % 512 == 0) {
-      const Job& job = solver.jobs[best.job];
-      const double uc = 0.5 * (best.lo[0] + best.hi[0]), sc = 0.5 * (best.lo[1] + best.hi[1]);
-      for (double d : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6})
-        for (int du = -1; du <= 1; ++du)
-          for (int ds = -1; ds <= 1; ++ds) {
-            const double u = std::clamp(uc + du * d, 0.0, 1.0), s = std::clamp(sc + ds * d, 0.0, 2.0);
-            Vec3 p;
-            if (solver.test_point(job.s_side, job.s_elem, u, s, &p) == Inside::inside) return report_overlap(p);
-          }
+      Vec3 p;
+      if (inside_near_best(&p)) return report_overlap(p);
     }
     const int i = top.split;
     Box l = top, r = top;
@@ -966,6 +974,8 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   // elements on the meridian of that side's witness point, and a little
   // around it, are tested too.
   if (lsq <= 0.0) {
+    // Around the best pair once more (a search that ends early never reached the periodic look).
+    if (Vec3 p; ub < kInf && inside_near_best(&p)) return report_overlap(p);
     for (int side = 0; side < 2; ++side) {
       const Vec3 l = poses[side].rotation().transpose() * (w[side] - poses[side].translation);
       const double s0 = s_of(std::atan2(l.y(), l.x()));
