@@ -676,7 +676,7 @@ TEST(SolidDistanceOverlap, ShallowerThanTolIsStillProven) {
 // mapped to the input curve and found inside the other solid), frames of the
 // motion probe at eps 1e-5: before any enumeration of crossing patches, which
 // each of them ran without that probe (0.9, 1.1 and 1.8 M instructions a
-// query; 0.2 M with it).
+// query; 0.2 to 0.3 M with it).
 TEST(SolidDistanceOverlap, CrossingPatchesProvenByTheirDeepPoints) {
   for (const char* f : {"cases/regressions/solid_overlap_deep_points_pawn_bottle.json",
                         "cases/regressions/solid_overlap_deep_points_lightmils.json",
