@@ -364,15 +364,15 @@ TEST(PatchCrossingPoint, OnBothPatchesWhenTheyCross) {
   EXPECT_GE(found, trials / 2);
 }
 
-// The overlap probe's candidates (patch_deep_point): for a sphere zone A
-// cutting B's surface, the points of A deepest on either side of B's whole
-// surface, descended from the crossing. Each is on A, never shallower than
-// its start, and, not vacuous, at a dense grid's deepest value (or deeper:
-// the grid samples) for most pairs on both sides.
+// The overlap probe's candidates (patch_deep_point): for a sphere zone A, and
+// a cone band A, through a point of B's surface, the points of A deepest on
+// either side of B's whole surface, descended from that point. Each is on A,
+// never shallower than its start, and, not vacuous, at a dense grid's deepest
+// value (or deeper: the grid samples) for most pairs on both sides.
 TEST(PatchDeepPoint, OnThePatchAndAtTheDeepestValue) {
   std::mt19937_64 g = named_rng("PatchDeepPoint", 17);
   std::uniform_real_distribution<double> U(-1, 1);
-  int at_min[2] = {0, 0}, trials = 0;
+  int at_min[2][2] = {{0, 0}, {0, 0}}, trials = 0;  // [sphere zone, cone][side]
   for (int trial = 0; trial < 100; ++trial) {
     const Arc2 arc = random_arc(g, trial % 2 == 1);
     const FootedPatch fp = random_footed_patch(g, arc, false);
@@ -381,26 +381,39 @@ TEST(PatchDeepPoint, OnThePatchAndAtTheDeepestValue) {
     const Vec3 side_dir = f.n.cross(Vec3(U(g), U(g), U(g))).normalized();
     const double rs = 0.1 * f.scale;
     const Vec3 w = std::cos(0.3) * f.n + std::sin(0.3) * side_dir;
-    const Patch A = sphere_zone(g, f.x + rs * w, rs, -w, 0.5);
+    // A cone band about a random axis with f.x in the middle of its segment,
+    // at radius rs, the segment's direction random in the meridian plane.
+    const Mat3 R = random_rotation(g);
+    Arc2 seg;
+    const double phi = 0.6 * M_PI * U(g), len = 1.5 * rs;
+    seg.tangent = Vec2(std::cos(phi), std::sin(phi));
+    seg.start = Vec2(rs, 0.0) - 0.5 * len * seg.tangent;
+    seg.length = len;
+    const Patch zones[2] = {sphere_zone(g, f.x + rs * w, rs, -w, 0.5), make_patch(seg, R, f.x - rs * R.col(0))};
     ++trials;
     auto gB = [&](const Vec3& x) { return patch_surface_function(B, patch_local(B, x)); };
-    for (int k = 0; k < 2; ++k) {
-      const double side = k == 0 ? -1.0 : 1.0;
-      const Vec3 x = patch_deep_point(A, B, f.x, side, 1e-12);
-      const double span = std::max({8.0, f.x.norm(), B.straight ? 0.0 : B.c.norm() + B.rho});
-      EXPECT_LE(point_patch_distance(A, x), 1024 * kEps * span) << "trial " << trial << " side " << side;
-      double grid = INFINITY;
-      for (int i = 0; i <= 40; ++i)
-        for (int j = 0; j < 80; ++j) grid = std::min(grid, side * gB(patch_point(A, i / 40.0, -M_PI + 2 * M_PI * j / 80)));
-      const double v = side * gB(x);
-      // Never shallower than the start, f.x, which is on both surfaces.
-      EXPECT_LE(v, 1e-9 * span) << "trial " << trial << " side " << side;
-      if (v <= grid + 1e-9 * span) ++at_min[k];
+    const double span = std::max({8.0, f.x.norm(), B.straight ? 0.0 : B.c.norm() + B.rho});
+    for (int z = 0; z < 2; ++z) {
+      const Patch& A = zones[z];
+      for (int k = 0; k < 2; ++k) {
+        const double side = k == 0 ? -1.0 : 1.0;
+        const Vec3 x = patch_deep_point(A, B, f.x, side, 1e-12);
+        EXPECT_LE(point_patch_distance(A, x), 1024 * kEps * span) << "trial " << trial << " patch " << z;
+        double grid = INFINITY;
+        for (int i = 0; i <= 40; ++i)
+          for (int j = 0; j < 80; ++j)
+            grid = std::min(grid, side * gB(patch_point(A, i / 40.0, -M_PI + 2 * M_PI * j / 80)));
+        const double v = side * gB(x);
+        // Never shallower than the start, f.x, which is on both surfaces.
+        EXPECT_LE(v, 1e-9 * span) << "trial " << trial << " patch " << z << " side " << side;
+        if (v <= grid + 1e-9 * span) ++at_min[z][k];
+      }
     }
   }
-  std::printf("PatchDeepPoint: at the grid's deepest value on %d and %d of %d pairs\n", at_min[0], at_min[1], trials);
-  EXPECT_GE(at_min[0], trials * 2 / 3);
-  EXPECT_GE(at_min[1], trials * 2 / 3);
+  std::printf("PatchDeepPoint: at the grid's deepest value, sphere zones %d and %d, cones %d and %d, of %d pairs\n",
+              at_min[0][0], at_min[0][1], at_min[1][0], at_min[1][1], trials);
+  for (auto& z : at_min)
+    for (int k : z) EXPECT_GE(k, trials * 2 / 3);
 }
 
 // A regression (seed 13 of the test above, trial 102): a small torus patch A
