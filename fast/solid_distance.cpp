@@ -529,8 +529,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   }
 
   // A witness pair before the traversal: a few rounds of alternating
-  // projection onto the surfaces, from the closest pair of the root disks'
-  // circles. A threshold query answered "closer" needs only one pair below the
+  // projection onto the surfaces, from the warm start's pair when it gave
+  // one (the previous frame's contact is near this one's: on the motion
+  // probe's sequences, 158.8 -> 146.5 M instructions at eps 1e-5, 6-9 % less
+  // at 1e-3, 1e-7 and tol 1e-6, than from the root circles; proven overlaps
+  // 37 against the cold queries' 38 at 1e-3, where one bracket [0, u <= tol]
+  // goes without the proof, and 197 against 196 on 3000 queries at 1e-5),
+  // else from the closest pair of the root disks' circles. A threshold query answered "closer" needs only one pair below the
   // threshold, and the best-first loop below, which would first tighten every
   // bound under the threshold, then stops at once; any other query starts
   // with an upper bound near the distance, so the local proofs of the first
@@ -538,7 +543,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // The rounds project onto the fits' patches; only the last pair is mapped
   // to the input curves (true_point, ten times a patch projection's cost).
   {
-    Vec3 y = circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b, x = y;
+    Vec3 y = ub < kInf ? res.point_b  // (only the warm start sets ub before this)
+                       : circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
+    Vec3 x = y;
     BiarcFit fx, fy;
     // Between nearly parallel sides each round moves the pair only a little
     // way along them: the point projected onto A is pushed on by 0.7 of B's
