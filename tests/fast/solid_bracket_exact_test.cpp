@@ -4,7 +4,10 @@
 // are close), so lower <= d <= upper is checked without rounding.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "core/case_io.h"
 #include "fast/case_model.h"
@@ -15,21 +18,34 @@ namespace {
 
 using Quad = __float128;
 
-// Balls of radius r at the origin and at (t, 0, 0), for several scales: the
-// exact distance t - 2r of the doubles t and r.
+// Balls of radius r at the origin and at t along an axis, for several scales:
+// the exact distance t - 2r of the doubles t and r.
 TEST(SolidBracketExact, BallsAlongAnAxisHoldTheExactDistance) {
   const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/upper_rounded_outward_balls.json");
   const double r = 0.01;
-  const double seps[] = {0.03, 0.0300000000000001, 0.021, 0.02000001, 0.5, 3.3};
+  std::vector<double> seps = {0.03, 0.0300000000000001, 0.021, 0.02000001, 0.5, 3.3};
+  // And separations of full mantissas over the same range, along each axis
+  // (fixed seed: the exact check needs no other). (Since the first witness is
+  // polished, none of these needs the lower bounds' rounding allowance to
+  // hold: the no_rounding mutant survives this test, see the stop's note.)
+  std::mt19937_64 g(20261127);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int k = 0; k < 60; ++k) seps.push_back(0.0201 * std::pow(3.3 / 0.0201, U(g)));
   const CaseModel m = build_case_model(c, 1e-5);
-  for (const double t : seps) {
+  for (std::size_t k = 0; k < seps.size(); ++k) {
     PosedSolid a = m.instances[0], b = m.instances[1];
-    b.t = Vec3(t, 0, 0);
-    for (const double tol : {1e-6, 1e-12}) {
+    // Every third pair far from the origin, where the coordinates' rounding
+    // (not the distance's) is what the allowance must cover.
+    a.t = k % 3 == 2 ? Vec3(700 + 600 * U(g), -900 * U(g), 300 * U(g)) : Vec3::Zero();
+    b.t = a.t;
+    b.t[k % 3] += seps[k];
+    const double t = b.t[k % 3] - a.t[k % 3];  // the doubles' separation, exact (Sterbenz)
+    // (Far from the origin tol 1e-12 is below the coordinates' rounding: 1e-9 there.)
+    for (const double tol : {1e-6, k % 3 == 2 ? 1e-9 : 1e-12}) {
       DistanceOptions o;
       o.tol = tol;
       const SolidDistanceResult res = solid_distance(a, b, o);
-      const Quad d = static_cast<Quad>(t) - 2 * static_cast<Quad>(r);
+      const Quad d = static_cast<Quad>(b.t[k % 3]) - static_cast<Quad>(a.t[k % 3]) - 2 * static_cast<Quad>(r);
       EXPECT_TRUE(static_cast<Quad>(res.lower) <= d) << "t " << t << " tol " << tol << ": lower above the exact distance";
       EXPECT_TRUE(d <= static_cast<Quad>(res.upper)) << "t " << t << " tol " << tol << " upper " << res.upper
                                                     << " below the exact distance";
