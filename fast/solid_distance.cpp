@@ -259,31 +259,22 @@ struct Solid {
     return parts[i].fit;
   }
 
-  // The point of fit f's patches nearest world point x: within f.eps of the
-  // surface, not a genuine surface point (true_point maps it to one), and
-  // a tenth of true_point's cost.
-  Vec3 fit_point(const BiarcFit& f, const Vec3& x) const {
-    Vec3 best = x;
-    double best_d = kInf;
-    for (int k = 0; k < f.arcs; ++k) {
-      if (f.arc[k].length <= 0 && k > 0) continue;
-      Vec3 y;
-      const double d = patch_nearest(make_patch(f.arc[k], s.R, s.t), x, &y);
-      if (d < best_d) best_d = d, best = y;
-    }
-    return best;
-  }
-
   // The patch of fit f's arc nearest world point x (arcs of no length only
-  // when the fit has no other).
-  Patch nearest_patch(const BiarcFit& f, const Vec3& x) const {
-    Patch best = make_patch(f.arc[0], s.R, s.t);
+  // when the fit has no other), and in *y that patch's point nearest x:
+  // within f.eps of the surface, not a genuine surface point (true_point maps
+  // it to one), and a tenth of true_point's cost.
+  Patch nearest_patch(const BiarcFit& f, const Vec3& x, Vec3* y) const {
+    Patch best;
     double best_d = kInf;
     for (int k = 0; k < f.arcs; ++k) {
       if (f.arc[k].length <= 0) continue;
       const Patch p = make_patch(f.arc[k], s.R, s.t);
-      Vec3 y;
-      if (const double d = patch_nearest(p, x, &y); d < best_d) best_d = d, best = p;
+      Vec3 yk;
+      if (const double d = patch_nearest(p, x, &yk); d < best_d) best_d = d, best = p, *y = yk;
+    }
+    if (best_d == kInf) {
+      best = make_patch(f.arc[0], s.R, s.t);
+      patch_nearest(best, x, y);
     }
     return best;
   }
@@ -535,8 +526,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // at 1e-3, 1e-7 and tol 1e-6, than from the root circles; proven overlaps
   // 37 against the cold queries' 38 at 1e-3, where one bracket [0, u <= tol]
   // goes without the proof, and 197 against 196 on 3000 queries at 1e-5),
-  // else from the closest pair of the root disks' circles. A threshold query answered "closer" needs only one pair below the
-  // threshold, and the best-first loop below, which would first tighten every
+  // else from the closest pair of the root disks' circles. A threshold query
+  // answered "closer" needs only one pair below the threshold, and the
+  // best-first loop below, which would first tighten every
   // bound under the threshold, then stops at once; any other query starts
   // with an upper bound near the distance, so the local proofs of the first
   // leaf pairs can pass (measured: 5 % fewer instructions on the motion probe).
@@ -547,6 +539,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
                        : circle3_circle3_distance(A.disk_circle(A.parts[0]), B.disk_circle(B.parts[0])).point_b;
     Vec3 x = y;
     BiarcFit fx, fy;
+    Patch px, py;  // the patches the pair is on
     // Between nearly parallel sides each round moves the pair only a little
     // way along them: the point projected onto A is pushed on by 0.7 of B's
     // last move (any point may be projected; the pair stays genuine). Eight
@@ -559,9 +552,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     for (int i = 0; i < 8; ++i) {
       const Vec3 x0 = x, y0 = y;
       fx = A.nearest_fit(ys);
-      x = A.fit_point(fx, ys);
+      px = A.nearest_patch(fx, ys, &x);
       fy = B.nearest_fit(x);
-      y = B.fit_point(fy, x);
+      py = B.nearest_patch(fy, x, &y);
       if (i > 0 && (x - x0).norm() + (y - y0).norm() <= 1e-2 * (x - y).norm()) break;
       ys = i > 0 ? Vec3(y + 0.7 * (y - y0)) : y;
     }
@@ -577,7 +570,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // the rest of the gap is pairs whose rounds end at another local minimum.
     {
       Vec3 xs, ys2;
-      patch_pair_descent(A.nearest_patch(fx, x), B.nearest_patch(fy, y), x, 1e-3 * opt.tol, &xs, &ys2);
+      patch_pair_descent(px, py, x, 1e-3 * opt.tol, &xs, &ys2);
       if (xs.allFinite() && ys2.allFinite()) x = xs, y = ys2;
     }
     offer(A.true_point(fx, x), B.true_point(fy, y));
@@ -1005,8 +998,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // and the deep points, from the fits nearest its points.
   if (lb <= 0 && !tried_witness && ub < kInf && !unresolved) {
     const BiarcFit fa = A.nearest_fit(res.point_a), fb = B.nearest_fit(res.point_b);
+    Vec3 unused;
     if (witness_probe(fa, fb) ||
-        deep_probe(A.nearest_patch(fa, res.point_a), B.nearest_patch(fb, res.point_b), fa, fb))
+        deep_probe(A.nearest_patch(fa, res.point_a, &unused), B.nearest_patch(fb, res.point_b, &unused), fa, fb))
       return proven_overlap(shared);
   }
   // A stop before any candidate (a small budget) still owes a finite
