@@ -14,7 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <memory>
 
 #include <Eigen/Geometry>
@@ -319,21 +318,23 @@ class Runner {
   // Frames (setup queries on the finest trees, or the poses file) and
   // certified distances of the sample frames.
   void make_motions() {
-    std::vector<std::string> names;  // the pairs in run order: Figure 12's, then the deformable ones
-    for (std::size_t i = 0; i < in_.statics.size(); ++i)
-      for (std::size_t j = i; j < in_.statics.size(); ++j) names.push_back(in_.statics[i].name + "-" + in_.statics[j].name);
-    for (const auto& d : in_.deformables)
-      for (const auto& st : in_.statics) names.push_back(st.name + "-" + d.name);
-    std::vector<std::pair<double, double>> reaches;  // each pair's two solids' reach (profile_reach), in run order
+    // The pairs in run order (Figure 12's, then the deformable ones): their
+    // names and the sum of their two solids' reaches (profile_reach).
+    std::vector<std::string> names;
+    std::vector<double> reaches;
     auto reach = [](const SolidDef& d) {
       double r = 0;
       for (const Profile& p : d.keyframes) r = std::max(r, profile_reach(p));
       return r;
     };
+    auto plan = [&](const BenchInput::Solid& a, const BenchInput::Solid& b) {
+      names.push_back(a.name + "-" + b.name);
+      reaches.push_back(reach(a.def) + reach(b.def));
+    };
     for (std::size_t i = 0; i < in_.statics.size(); ++i)
-      for (std::size_t j = i; j < in_.statics.size(); ++j) reaches.emplace_back(reach(in_.statics[i].def), reach(in_.statics[j].def));
+      for (std::size_t j = i; j < in_.statics.size(); ++j) plan(in_.statics[i], in_.statics[j]);
     for (const auto& d : in_.deformables)
-      for (const auto& st : in_.statics) reaches.emplace_back(reach(st.def), reach(d.def));
+      for (const auto& st : in_.statics) plan(st, d);
     std::error_code ec;
     const bool from_file = !o_.poses_file.empty() && std::filesystem::exists(o_.poses_file, ec);
     if (ec) throw InputError(o_.poses_file + ": cannot read (" + ec.message() + ")");
@@ -389,8 +390,7 @@ class Runner {
   }
 
   // The poses file, checked against this run before any frame is used.
-  BenchPoses read_poses(const std::vector<std::string>& names,
-                        const std::vector<std::pair<double, double>>& reaches) const {
+  BenchPoses read_poses(const std::vector<std::string>& names, const std::vector<double>& reaches) const {
     const std::string& file = o_.poses_file;
     auto mismatch = [&](const std::string& what) {
       throw InputError(file + ": poses of another run (" + what + "); remove it or pass another --poses");
@@ -414,7 +414,7 @@ class Runner {
       if (p.pairs[k].first != names[k]) mismatch("pair " + quote(p.pairs[k].first) + " where this run has " + quote(names[k]));
       // The motion keeps A at its place and B within twice their reaches of it:
       // a pose far beyond (which would cost the certified engine minutes) is not one of its frames.
-      const double far = 4 * (reaches[k].first + reaches[k].second);
+      const double far = 4 * reaches[k];
       for (const MotionFrame& f : p.pairs[k].second)
         if (!(f.t_WA.norm() <= far && (f.t_WB - f.t_WA).norm() <= far))
           throw InputError(file + ": pair " + quote(names[k]) + ": a pose far beyond the motion's reach");
