@@ -892,9 +892,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
               // The spine bounds at the new cut first: the pair's own
               // minimum is near it, where the boxes cost the most.
-              // (And the hulls along the pair's own closest direction, x - y:
-              // exact for cones side by side.)
-              if (const double hull = patch_hull_bound(P, Q, p_small ? Vec3(x - y) : Vec3(y - x), 0); hull >= cut2) {
+              // (And the hulls along the pair's own closest direction, from
+              // Q's point y towards P's x: exact for cones side by side. It
+              // was taken reversed, y - x, whenever Q was the boxed patch,
+              // where it is at most 0 and retires nothing; the right way
+              // round the motion probe's 600 queries at eps 1e-5 take 156.0 ->
+              // 143.1 M instructions, 1e-7 354.4 -> 286.8, 1e-3 116.0 ->
+              // 113.8, tol 1e-6 208.6 -> 204.3.)
+              if (const double hull = patch_hull_bound(P, Q, Vec3(x - y), 0); hull >= cut2) {
                 proven = true;
                 local = hull;
               }
