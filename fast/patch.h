@@ -88,6 +88,16 @@ inline Circle3 patch_disk_circle(const Patch& p, const Vec2& centre) {
   return {p.o + centre.y() * p.a, p.a, std::max(centre.x(), 0.0)};
 }
 
+// The length of the patch's arc or segment (in (r, z)).
+inline double patch_profile_length(const Patch& p) {
+  return p.straight ? (p.p1 - p.p0).norm() : p.rho * std::abs(p.sweep);
+}
+// At least the patch's largest distance from its axis (an arc's: its ends' or
+// its circle's).
+inline double patch_max_radius(const Patch& p) {
+  return std::max({p.p0.x(), p.p1.x(), p.straight ? 0.0 : p.c.x() + p.rho, 0.0});
+}
+
 // Radius of a ball around the patch's axis point at the patch's mean height that
 // holds the whole patch (used for root-finding ranges and quick rejection).
 double patch_extent(const Patch& p, Vec3* centre);

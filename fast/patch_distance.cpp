@@ -493,8 +493,8 @@ struct BoxedPatch {
   double len, rmax, curv;
   explicit BoxedPatch(const Patch& p)
       : P(p),
-        len(p.straight ? (p.p1 - p.p0).norm() : p.rho * std::abs(p.sweep)),
-        rmax(std::max({p.p0.x(), p.p1.x(), p.straight ? 0.0 : p.c.x() + p.rho, 0.0})),
+        len(patch_profile_length(p)),
+        rmax(patch_max_radius(p)),
         curv(p.straight ? 0.0 : len * len / p.rho) {
     axis_frame(P, &e1, &e2);
   }
