@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
@@ -477,6 +478,13 @@ class Runner {
       B.q = {qb.w(), qb.x(), qb.y(), qb.z()}, B.translation = f.t_WB;
       const ExactSolidResult r = solid_distance_exact(pa(j), A, pb(j), B, xo);
       pm.exact.push_back({r.certified && r.width_reached, r.lower, r.upper});
+      if (!(r.certified && r.width_reached)) {
+        std::ostringstream m;
+        m << "certified reference: " << pm.name << " frame " << j << " not counted: " << (r.certified ? "proven [" : "unproven [")
+          << r.lower << ", " << r.upper << "] after " << r.boxes << " boxes"
+          << (r.reason.empty() ? std::string() : " (" + r.reason + ")");
+        say(m.str());
+      }
     }
   }
 
