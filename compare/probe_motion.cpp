@@ -1,8 +1,10 @@
 // Developer probe for the query's speed (issue 9): the paper's 15 pairs in the
 // same near-contact motion as `revdist bench` (Figure 12), timed per query in
 // thread CPU time with the work counters, on poses cached in a file so that two
-// builds (or callgrind) see the same queries. `--save F` / `--check F` write and
-// compare the brackets (they must intersect) between builds.
+// builds (or callgrind) see the same queries (by default
+// /tmp/revdist_motion_poses_<frames>.bin, written by the first run). `--save F`
+// / `--check F` write and compare the brackets (they must intersect) between
+// builds.
 // Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
 //                             [--save FILE] [--check FILE] [--repeat K]
 //                             [--select LO,HI] [--only-overlap] [--index K] [--coherent] [--perfect-warm] [--worst K]
@@ -65,7 +67,7 @@ int main(int argc, char** argv) {
   bool coherent = false, only_overlap = false, perfect = false;
   long only_index = -1;
   double sel_lo = -1, sel_hi = -1;
-  std::string poses_file = "/tmp/revdist_motion_poses.bin", save, check;
+  std::string poses_file, save, check;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : "";
@@ -90,6 +92,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // The default cache holds one frame count: a cache of another count would
+  // silently stand in for --frames.
+  if (poses_file.empty()) poses_file = "/tmp/revdist_motion_poses_" + std::to_string(frames) + ".bin";
   if (tol < 0) tol = 2 * eps;
   const BenchInput in = paper_bench_input(default_models_dir());
   std::vector<Profile> profiles;
