@@ -260,22 +260,24 @@ struct Solid {
   }
 
   // The patch of fit f's arc nearest world point x (arcs of no length only
-  // when the fit has no other), and in *y that patch's point nearest x:
-  // within f.eps of the surface, not a genuine surface point (true_point maps
-  // it to one), and a tenth of true_point's cost.
-  Patch nearest_patch(const BiarcFit& f, const Vec3& x, Vec3* y) const {
+  // when the fit has no other), and in *y, when given, that patch's point
+  // nearest x: within f.eps of the surface, not a genuine surface point
+  // (true_point maps it to one), and a tenth of true_point's cost.
+  Patch nearest_patch(const BiarcFit& f, const Vec3& x, Vec3* y = nullptr) const {
     Patch best;
+    Vec3 best_y;
     double best_d = kInf;
     for (int k = 0; k < f.arcs; ++k) {
       if (f.arc[k].length <= 0) continue;
       const Patch p = make_patch(f.arc[k], s.R, s.t);
       Vec3 yk;
-      if (const double d = patch_nearest(p, x, &yk); d < best_d) best_d = d, best = p, *y = yk;
+      if (const double d = patch_nearest(p, x, &yk); d < best_d) best_d = d, best = p, best_y = yk;
     }
     if (best_d == kInf) {
       best = make_patch(f.arc[0], s.R, s.t);
-      patch_nearest(best, x, y);
+      patch_nearest(best, x, &best_y);
     }
+    if (y) *y = best_y;
     return best;
   }
 
@@ -1039,9 +1041,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // and the deep points, from the fits nearest its points.
   if (lb <= 0 && !tried_witness && ub < kInf && !unresolved) {
     const BiarcFit fa = A.nearest_fit(res.point_a), fb = B.nearest_fit(res.point_b);
-    Vec3 unused;
     if (witness_probe(fa, fb) ||
-        deep_probe(A.nearest_patch(fa, res.point_a, &unused), B.nearest_patch(fb, res.point_b, &unused), fa, fb))
+        deep_probe(A.nearest_patch(fa, res.point_a), B.nearest_patch(fb, res.point_b), fa, fb))
       return proven_overlap(shared);
   }
   // A stop before any candidate (a small budget) still owes a finite
