@@ -28,7 +28,8 @@ TEST(SolidBracketExact, BallsAlongAnAxisHoldTheExactDistance) {
   // And separations of full mantissas over the same range, along each axis
   // (fixed seed: the exact check needs no other). (Since the first witness is
   // polished, none of these needs the lower bounds' rounding allowance to
-  // hold: the no_rounding mutant survives this test, and the coins' below.)
+  // hold: the no_rounding mutant survives this test and the stacked coins';
+  // the tilted coins' below catch it.)
   std::mt19937_64 g(20261127);
   std::uniform_real_distribution<double> U(0, 1);
   for (int k = 0; k < 60; ++k) seps.push_back(0.0201 * std::pow(3.3 / 0.0201, U(g)));
@@ -92,8 +93,67 @@ TEST(SolidBracketExact, StackedCoinsFarOffHoldTheExactGap) {
   // (Measured: 40 of 400. Without the lower bounds' rounding allowance, the
   // no_rounding mutant, all 400 are, and still none above the gap: another
   // allowance of the same size, about the upper bound's, covers the plane
-  // bound's rounding here, so this test does not catch that mutant either.)
+  // bound's rounding here, so this test does not catch that mutant. The
+  // tilted coins below do: without the allowance a face point within
+  // rounding of the other coin counts as inside it, a false overlap.)
   std::printf("StackedCoins: %d of 400 brackets' lower bounds within 64 ulps of the coordinates below the exact gap\n", tight);
+}
+
+// The same coins, tilted (a random rotation, both alike) and touching to
+// within a few ulps of their coordinates: gaps of -4 to +4 ulps of the
+// coordinates, 1e2 to 1e6 from the origin. A face point of one coin is then
+// inside the other only to rounding, and must not count as a shared point.
+// (The no_rounding mutant claims overlaps at gaps of 2e-12 here.)
+// The exact gap of the given doubles: the posed coins are R q + t exactly (R
+// as given: orthogonal to rounding, 1e-16 of the coins' size, far below the
+// coordinates' ulps tested here), so their facing faces lie in
+// parallel planes spanned by R's first two columns, and the gap is
+// n . (tb - ta - h R e_z) / |n| with n = R e_x x R e_y, in binary128 (the
+// products exact, |n| by a Newton step from the double root: far below
+// the ulps tested).
+TEST(SolidBracketExact, TiltedCoinsWithinRoundingOfTouchingClaimNoFalseOverlap) {
+  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json");
+  const double h = 0.1;
+  const CaseModel m = build_case_model(c, 1e-5);
+  std::mt19937_64 g(20261129);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> N(0, 1);
+  int overlaps = 0, touching = 0;
+  for (int k = 0; k < 200; ++k) {
+    PosedSolid a = m.instances[0], b = m.instances[1];
+    const Eigen::Quaterniond q(N(g), N(g), N(g), N(g));
+    const Mat3 R = q.normalized().toRotationMatrix();
+    a.R = b.R = R;
+    const double far = std::pow(10.0, 2 + 4 * U(g));
+    a.t = Vec3(far * (U(g) - 0.5), far * (U(g) - 0.5), far * (U(g) - 0.5));
+    const double ulp = std::nextafter(far, HUGE_VAL) - far;
+    b.t = a.t + (h + std::round(8 * (U(g) - 0.5)) * ulp) * R.col(2);
+    Quad n[3], num = 0, n2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, l = (i + 2) % 3;
+      n[i] = static_cast<Quad>(R(j, 0)) * R(l, 1) - static_cast<Quad>(R(l, 0)) * R(j, 1);
+      num += n[i] * (static_cast<Quad>(b.t[i]) - static_cast<Quad>(a.t[i]) - static_cast<Quad>(h) * R(i, 2));
+      n2 += n[i] * n[i];
+    }
+    Quad len = std::sqrt(static_cast<double>(n2));
+    len = (len + n2 / len) / 2;
+    const Quad gap = num / len;
+    const Quad d = gap > 0 ? gap : Quad(0);
+    touching += gap <= 0;
+    for (const double tol : {1e-6, 1e-12 * far}) {
+      DistanceOptions o;
+      o.tol = tol;
+      const SolidDistanceResult res = solid_distance(a, b, o);
+      EXPECT_TRUE(static_cast<Quad>(res.lower) <= d)
+          << "k " << k << " far " << far << " gap " << static_cast<double>(gap) << ": lower " << res.lower;
+      EXPECT_TRUE(d <= static_cast<Quad>(res.upper))
+          << "k " << k << " far " << far << " gap " << static_cast<double>(gap) << ": upper " << res.upper
+          << (res.overlap ? " (claims an overlap)" : "");
+      overlaps += res.overlap;
+    }
+  }
+  std::printf("TiltedCoins: %d of 200 pairs touch or overlap exactly; %d of 400 answers claim an overlap\n", touching,
+              overlaps);
 }
 
 }  // namespace
