@@ -695,6 +695,62 @@ Vec2 patch_params(const Patch& P, const Vec3& e1, const Vec3& e2, const Vec3& x)
 }
 }  // namespace
 
+namespace {
+// The distance from P's point at (u, th) to Q (patch_nearest's), with its
+// first and second derivatives in (u, th), in closed form. In Q's meridian
+// half-plane the distance is h(r, z) = |q - foot|, the foot on Q's nearest
+// feature: an end point, the arc's circle or the segment's line. Its
+// gradient there is the unit w from the foot to q, its Hessian k t t^T (t
+// normal to w): k = 1/d at an end, s/D on the circle (D = |q - c|, s the side
+// of the circle q is on), 0 on the line. About Q's axis r = |x - axis|, whose
+// Hessian is e_phi e_phi^T / r, so in the world grad = w_r e_r + w_z a and
+// Hess = k t t^T + (w_r / r) e_phi e_phi^T. P's point is x(u, th) = o +
+// m_r(u) e_R(th) + m_z(u) a_P, with m(u) P's meridian point.
+using PairJet = PatchPairJet;
+PairJet pair_jet(const Patch& P, const BoxedPatch& bp, const Patch& Q, const GaussWindow& win, double u, double th) {
+  PairJet j;
+  Vec2 mu;
+  const double ang = u * P.sweep;
+  const Vec2 m = P.straight ? meridian_point(P, u, 1.0, 0.0, &mu) : meridian_point(P, u, std::cos(ang), std::sin(ang), &mu);
+  const Vec2 muu = P.straight ? Vec2::Zero() : Vec2(-P.sweep * P.sweep * (m - P.c));
+  const double c = std::cos(th), s = std::sin(th);
+  const Vec3 eR = c * bp.e1 + s * bp.e2, eT = c * bp.e2 - s * bp.e1;
+  const Vec3 x = P.o + std::max(m.x(), 0.0) * eR + m.y() * P.a;
+  Vec3 er;
+  const Vec2 q = patch_local(Q, x, &er);
+  Vec2 best;
+  j.f = nearest_local(Q, win, q, &best);
+  const double r = q.x();
+  if (!(j.f > 0) || !(r > 1e-12 * (r + std::abs(q.y()) + 1)) || m.x() < 0) return j;
+  const Vec2 w = (q - best) / j.f;
+  double k = 0;
+  if (best == Q.p0 || best == Q.p1) {
+    k = 1 / j.f;
+  } else if (!Q.straight) {
+    const double D = (q - Q.c).norm();
+    k = (D >= Q.rho ? 1.0 : -1.0) / D;
+  }
+  const Vec3 grad = w.x() * er + w.y() * Q.a;
+  const Vec3 t3 = -w.y() * er + w.x() * Q.a;
+  const Vec3 ephi = Q.a.cross(er);
+  const double beta = w.x() / r;
+  const Vec3 xu = mu.x() * eR + mu.y() * P.a, xt = m.x() * eT;
+  const Vec3 xuu = muu.x() * eR + muu.y() * P.a, xut = mu.x() * eT, xtt = -m.x() * eR;
+  const double tu = t3.dot(xu), tt = t3.dot(xt), pu = ephi.dot(xu), pt = ephi.dot(xt);
+  j.fu = grad.dot(xu);
+  j.ft = grad.dot(xt);
+  j.fuu = k * tu * tu + beta * pu * pu + grad.dot(xuu);
+  j.fut = k * tu * tt + beta * pu * pt + grad.dot(xut);
+  j.ftt = k * tt * tt + beta * pt * pt + grad.dot(xtt);
+  j.smooth = true;
+  return j;
+}
+}  // namespace
+
+PatchPairJet patch_pair_jet(const Patch& P, const Patch& Q, double u, double th) {
+  return pair_jet(P, BoxedPatch(P), Q, gauss_window(Q), u, th);
+}
+
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
   const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
   // patch_nearest's distance, with Q's window computed once.
@@ -703,7 +759,57 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
     Vec2 best;
     return nearest_local(Q, win, patch_local(Q, framed_point(P, bp.e1, bp.e2, q, c, s)), &best);
   };
-  const Vec2 p = descend_params(P, bp, g, start, resolution, 0.05);
+  // Damped Newton steps on the closed-form derivatives (pair_jet), u kept
+  // in [0, 1], until a step promises less than the resolution; where the
+  // distance has no derivatives (0, or a point on Q's axis) the finite
+  // differences take over. (Measured on the motion probe, M instructions for
+  // 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6: finite differences
+  // 140.2 / 110.2 / 280.3 / 199.9, these 134.9 / 107.3 / 270.7 / 194.4:
+  // a step evaluates one jet, about 600 instructions, where the differences
+  // took five points before their line search's. Up to 16
+  // steps: with 8, 40 of the 1250 descents stopped short of their minimum,
+  // and the query paid more for the worse pairs (137.5 at eps 1e-5); capping
+  // the halvings at 1/32 cost more still, 141.7.)
+  double u = std::isfinite(start.x()) ? std::clamp(start.x(), 0.0, 1.0) : 0.5;
+  double th = std::isfinite(start.y()) ? start.y() : 0.0;
+  PairJet j = pair_jet(P, bp, Q, win, u, th);
+  bool rough = false;  // stopped where the derivatives do not hold
+  for (int it = 0; it < 16; ++it) {
+    if (!j.smooth) {
+      rough = j.f > 0;
+      break;
+    }
+    double su, st;
+    bool last = false;  // the Newton step's predicted decrease is below the resolution
+    const double det = j.fuu * j.ftt - j.fut * j.fut;
+    if (j.fuu > 0 && det > 0) {
+      su = -(j.ftt * j.fu - j.fut * j.ft) / det;
+      st = -(j.fuu * j.ft - j.fut * j.fu) / det;
+      if ((u <= 0 && su < 0) || (u >= 1 && su > 0)) {  // against an end of [0, 1]: the azimuth alone
+        su = 0;
+        st = j.ftt > 0 ? -j.ft / j.ftt : 0;
+      }
+      last = -0.5 * (j.fu * su + j.ft * st) <= resolution;
+    } else {
+      // Not convex: Newton in each parameter where it is, else downhill
+      // (the whole profile, or 0.05 rad), then halved.
+      st = j.ftt > 0 ? -j.ft / j.ftt : (j.ft > 0 ? -0.05 : 0.05);
+      su = j.fuu > 0 ? -j.fu / j.fuu : (j.fu > 0 ? -1.0 : 1.0);
+    }
+    st = std::clamp(st, -0.5, 0.5);
+    bool moved = false;
+    for (double lam = 1.0; lam > 1e-3; lam *= 0.5) {
+      const double un = std::clamp(u + lam * su, 0.0, 1.0), tn = th + lam * st;
+      const PairJet jn = pair_jet(P, bp, Q, win, un, tn);
+      if (jn.f < j.f) {
+        moved = std::abs(un - u) > 1e-9 || std::abs(tn - th) * bp.rmax > 1e-9 * (bp.rmax + bp.len);
+        u = un, th = tn, j = jn;
+        break;
+      }
+    }
+    if (!moved || last) break;
+  }
+  const Vec2 p = rough ? descend_params(P, bp, g, Vec2(u, th), resolution, 0.05) : Vec2(u, th);
   *x = framed_point(P, bp.e1, bp.e2, p.x(), p.y());
   return patch_nearest(Q, *x, y);
 }

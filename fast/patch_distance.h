@@ -145,13 +145,24 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y);
 
 // A pair of points (x on P, y on Q) near a local minimum of their distance,
 // from P's parameters `start` (u, th): damped Newton steps on the distance
-// from P(u, th) to Q (patch_nearest), with finite differences, u kept in
-// [0, 1], until a Newton step promises less than `resolution`. Only a
+// from P(u, th) to Q (patch_nearest), its derivatives in closed form (finite
+// differences where it has none: at 0, on Q's axis), u kept in [0, 1],
+// until a Newton step promises less than `resolution`. Only a
 // candidate pair (both points genuine, to rounding): nothing is proven about
 // it. Returns their distance.
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y);
 // The same from the parameters of world point `near` (near P).
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec3& near, double resolution, Vec3* x, Vec3* y);
+
+// The descent's function: the distance from P's point at profile fraction u
+// and azimuth th (patch_point) to Q (patch_nearest), with its first and
+// second derivatives in (u, th) in closed form; `smooth` is false where they
+// do not hold (the distance 0, the point on Q's axis or past P's).
+struct PatchPairJet {
+  double f = 0, fu = 0, ft = 0, fuu = 0, fut = 0, ftt = 0;
+  bool smooth = false;
+};
+PatchPairJet patch_pair_jet(const Patch& P, const Patch& Q, double u, double th);
 
 // A point of patch P deep on one side of Q's whole surface (the full torus or
 // cone it lies on): the same descent as patch_pair_descent, of side * g_Q
