@@ -763,7 +763,20 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const Part& qa = A.parts[e.a];
     const Part& qb = B.parts[e.b];
     if (!(qa.has_fit && qb.has_fit)) {
-      // Descend: split the part without a fit, or the bigger one.
+      // Descend: split the part without a fit, or the bigger one; both
+      // tree nodes at once when neither is twice the other's size (the pair
+      // of one side's child and the other's node would mostly be popped and
+      // split in turn: measured on the motion probe, node pairs a query
+      // 81.2 -> 52.8 at eps 1e-5, M instructions for 600 queries at eps 1e-5
+      // / 1e-3 / 1e-7 / tol 1e-6 130.9 / 103.6 / 266.3 / 190.4 -> 124.1 /
+      // 98.7 / 264.5 / 183.5; with a ratio of 0.2 or 0.9 instead of 0.5:
+      // 124.7 and 128.2 at eps 1e-5).
+      if (!qa.has_fit && !qb.has_fit && std::min(qa.disk_r, qb.disk_r) >= 0.5 * std::max(qa.disk_r, qb.disk_r)) {
+        const std::int32_t ca = A.split(e.a, &st.refined), cb = B.split(e.b, &st.refined);
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j) push_pair(ca + i, cb + j);
+        continue;
+      }
       split_pair(e, !qa.has_fit && (qb.has_fit || qa.disk_r >= qb.disk_r));
       continue;
     }
