@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <limits>
 #include <queue>
 #include <string>
@@ -62,7 +63,10 @@ constexpr long kTightInner = 256;
 struct Part {
   std::int32_t node = -1;   // tree node, -1 for a refinement
   bool has_fit = false;     // leaves and refinements: compared by patches
-  BiarcFit fit;
+  // Its fit (Solid::fit): the tree's fit of that index (>= 0), refinement
+  // k's (-2 - k), none (-1). An index, not a copy: a part is copied at every
+  // split, and most never need their fit.
+  std::int32_t fit = -1;
   Vec2 disk_c = Vec2::Zero();
   double disk_r = 0.0;
   Vec2 seg_a = Vec2::Zero(), seg_b = Vec2::Zero();  // its capsule: the part is within cap_r of the segment
@@ -77,6 +81,7 @@ struct Solid {
   const PosedSolid& s;
   BiarcTreeView tree;  // s.tree; a lazy tree's nodes are built here when first split
   std::vector<Part> parts;
+  std::deque<BiarcFit> refined_fits;  // the refinements' fits (a deque: references stay valid)
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
 
@@ -104,10 +109,14 @@ struct Solid {
     set_capsule(p, n.seg_a, n.seg_b, n.radius);
     if (n.fit >= 0) {
       p.has_fit = n.leaf();
-      p.fit = tree.fit(n.fit);
+      p.fit = n.fit;
     }
     return p;
   }
+
+  // Part p's fit. (A tree fit's reference does not survive a lazy tree's
+  // expansion: tree.children.)
+  const BiarcFit& fit(const Part& p) const { return p.fit >= 0 ? tree.fit(p.fit) : refined_fits[-2 - p.fit]; }
 
   // The circle the part's disk centre sweeps, in the world.
   Circle3 disk_circle(const Part& p) const { return {p.world_c, axis, disk_circle_radius(p)}; }
@@ -116,7 +125,9 @@ struct Solid {
 
   bool can_split(const Part& p, int max_refine) const {
     if (!p.has_fit) return true;
-    return p.level < max_refine && p.fit.u1 > p.fit.u0 && p.disk_r > 0;
+    if (p.level >= max_refine || !(p.disk_r > 0)) return false;
+    const BiarcFit& f = fit(p);
+    return f.u1 > f.u0;
   }
 
   // Splits part i (memoised: the children are shared by every pair). The
@@ -148,9 +159,10 @@ struct Solid {
 
   // Half-span refinements of a fit: a curve is refitted with a biarc under the
   // same lens bound as the tree; an exact line or arc is cut in two.
-  void refine(const Part& p, Part* c0, Part* c1) const {
-    const Piece& piece = s.profile->pieces[p.fit.piece];
-    const double u0 = p.fit.u0, u1 = p.fit.u1, um = 0.5 * (u0 + u1);
+  void refine(const Part& p, Part* c0, Part* c1) {
+    const BiarcFit pf = fit(p);
+    const Piece& piece = s.profile->pieces[pf.piece];
+    const double u0 = pf.u0, u1 = pf.u1, um = 0.5 * (u0 + u1);
     SpanEnds e;
     e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
     e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);
@@ -163,16 +175,16 @@ struct Solid {
       Part& c = *out[h];
       c.level = p.level + 1;
       c.has_fit = true;
-      BiarcFit& f = c.fit;
-      f = p.fit;
+      c.fit = -2 - static_cast<std::int32_t>(refined_fits.size());
+      BiarcFit& f = refined_fits.emplace_back(pf);
       f.u0 = us[h];
       f.u1 = us[h + 1];
       Capsule cap;
-      if (p.fit.kind == SpanKind::curve) {
+      if (pf.kind == SpanKind::curve) {
         const Vec2 mid = piece_point(piece, 0.5 * (f.u0 + f.u1));
-        f = fit_curve_span(piece, p.fit.piece, f.u0, f.u1, *ends[h], mid, slack, &cap);
+        f = fit_curve_span(piece, pf.piece, f.u0, f.u1, *ends[h], mid, slack, &cap);
       } else {
-        const Arc2& a = p.fit.arc[0];
+        const Arc2& a = pf.arc[0];
         const double half = 0.5 * a.length;
         f.arc[0] = h == 0 ? Arc2{a.start, a.tangent, a.curvature, half}
                           : Arc2{a.point(half), a.tangent_at(half), a.curvature, half};
@@ -262,7 +274,7 @@ struct Solid {
       const Part &c0 = parts[c], &c1 = parts[c + 1];
       i = (q - c0.disk_c).norm() - c0.disk_r <= (q - c1.disk_c).norm() - c1.disk_r ? c : c + 1;
     }
-    return parts[i].fit;
+    return fit(parts[i]);
   }
 
   // The patch of fit f's arc nearest world point x (arcs of no length only
@@ -662,7 +674,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     return false;
   };
   auto remember = [&](std::int32_t ia, std::int32_t ib, double lb) {
-    const BiarcFit &fa = A.parts[ia].fit, &fb = B.parts[ib].fit;
+    const BiarcFit &fa = A.fit(A.parts[ia]), &fb = B.fit(B.parts[ib]);
     // As A's neighbour `fa` of a later fit of A against fb: it precedes that
     // fit (dir 0) when fa.u1 is its start, follows it (dir 1) when fa.u0 is its end.
     for (int dir = 0; dir < 2; ++dir) {
@@ -681,7 +693,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         NeighbourKey{mine_is_a, dir, other.piece, mine.piece, other.u0, other.u1, dir == 0 ? mine.u0 : mine.u1});
     if (!it) return -kInf;
     const FitBound& f = fit_bounds[*it];
-    const BiarcFit& n = mine_is_a ? A.parts[f.a].fit : B.parts[f.b].fit;
+    const BiarcFit& n = mine_is_a ? A.fit(A.parts[f.a]) : B.fit(B.parts[f.b]);
     const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
     return f.lb - gap;
   };
@@ -785,7 +797,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     ++st.leaf_pairs;
     double lb_pair = kInf;
     bool all_separated = true;
-    const BiarcFit fa = qa.fit, fb = qb.fit;
+    const BiarcFit fa = A.fit(qa), fb = B.fit(qb);
     // The cut for the fits' patches: their distance must reach it for the
     // pair's bound, less the fit errors and rounding, to reach cut().
     auto fits_cut = [&] { return cut() + fa.eps + fb.eps + round; };
