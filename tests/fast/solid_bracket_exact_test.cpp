@@ -156,5 +156,52 @@ TEST(SolidBracketExact, TiltedCoinsWithinRoundingOfTouchingClaimNoFalseOverlap) 
               overlaps);
 }
 
+// A tol below what doubles resolve at the coordinates: the coins 1e6 from
+// the origin (coordinates' ulps 1.2e-10, rounding allowances about 6e-8)
+// asked for a bracket of 1e-12. The answer still holds the exact gap, says
+// it did not converge and why, and is as narrow as the allowances permit.
+// (Every pair of the two faces, exact lines, is short of the cut by the
+// rounding alone: the query used to refine them until the 25,000 leaf pairs
+// of the work budget ran out, about 90 ms, and left a bracket as wide as the
+// gap.)
+TEST(SolidBracketExact, CoinsFarOffAtTolBelowRoundingSayWhy) {
+  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json");
+  const CaseModel m = build_case_model(c, 1e-5);
+  PosedSolid a = m.instances[0], b = m.instances[1];
+  a.t = Vec3(1e6, -7e5, 3e5);
+  b.t = a.t;
+  b.t.z() += 0.1 + 0.01;
+  const Quad d = static_cast<Quad>(b.t.z()) - static_cast<Quad>(a.t.z()) - static_cast<Quad>(0.1);
+  DistanceOptions o;
+  o.tol = 1e-12;
+  const SolidDistanceResult res = solid_distance(a, b, o);
+  EXPECT_TRUE(static_cast<Quad>(res.lower) <= d && d <= static_cast<Quad>(res.upper));
+  EXPECT_FALSE(res.converged);
+  EXPECT_NE(res.reason.find("rounding of coordinates"), std::string::npos) << res.reason;
+  EXPECT_LT(res.upper - res.lower, 3e-7);
+  EXPECT_LT(res.stats.leaf_pairs, 2000);
+}
+
+// Balls 1e6 from the origin at tol 1e-12: the bracket ends within a few
+// rounding allowances of the coordinates (about 6e-8 there), holds the exact
+// distance, and its reason says that tol is below what doubles resolve there.
+TEST(SolidBracketExact, BallsFarOffAtTolBelowRoundingSayWhy) {
+  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/upper_rounded_outward_balls.json");
+  const CaseModel m = build_case_model(c, 1e-5);
+  PosedSolid a = m.instances[0], b = m.instances[1];
+  a.t = Vec3(1e6, -7e5, 3e5);
+  b.t = a.t;
+  b.t.x() += 0.05;
+  const Quad d = static_cast<Quad>(b.t.x()) - static_cast<Quad>(a.t.x()) - 2 * static_cast<Quad>(0.01);
+  DistanceOptions o;
+  o.tol = 1e-12;
+  const SolidDistanceResult res = solid_distance(a, b, o);
+  EXPECT_TRUE(static_cast<Quad>(res.lower) <= d && d <= static_cast<Quad>(res.upper));
+  EXPECT_FALSE(res.converged);
+  EXPECT_NE(res.reason.find("rounding of coordinates"), std::string::npos) << res.reason;
+  EXPECT_LT(res.upper - res.lower, 3e-7);
+  EXPECT_LT(res.stats.leaf_pairs, 2000);
+}
+
 }  // namespace
 }  // namespace revdist
