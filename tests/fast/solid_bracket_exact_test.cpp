@@ -57,6 +57,14 @@ TEST(SolidBracketExact, BallsAlongAnAxisHoldTheExactDistance) {
   }
 }
 
+// The two coins of cases/regressions/rounding_stacked_coins.json (radius
+// 0.5, kCoinHeight thick, faces of exact lines), fitted at eps 1e-5.
+constexpr double kCoinHeight = 0.1;
+CaseModel coins() {
+  return build_case_model(
+      read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json"), 1e-5);
+}
+
 // Coins stacked on one axis (z), 10 to 1e6 from the origin: their flat faces
 // are parallel, the closest pairs a whole disk, and the bracket settles within
 // a few hundred ulps of the coordinates around the gap, where only the
@@ -64,9 +72,8 @@ TEST(SolidBracketExact, BallsAlongAnAxisHoldTheExactDistance) {
 // rounded coordinates). The exact distance is b.z - a.z - h of the given
 // doubles, in binary128.
 TEST(SolidBracketExact, StackedCoinsFarOffHoldTheExactGap) {
-  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json");
-  const double h = 0.1;
-  const CaseModel m = build_case_model(c, 1e-5);
+  const double h = kCoinHeight;
+  const CaseModel m = coins();
   std::mt19937_64 g(20261128);
   std::uniform_real_distribution<double> U(0, 1);
   int tight = 0;
@@ -112,9 +119,8 @@ TEST(SolidBracketExact, StackedCoinsFarOffHoldTheExactGap) {
 // products exact, |n| by a Newton step from the double root: far below
 // the ulps tested).
 TEST(SolidBracketExact, TiltedCoinsWithinRoundingOfTouchingClaimNoFalseOverlap) {
-  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json");
-  const double h = 0.1;
-  const CaseModel m = build_case_model(c, 1e-5);
+  const double h = kCoinHeight;
+  const CaseModel m = coins();
   std::mt19937_64 g(20261129);
   std::uniform_real_distribution<double> U(0, 1);
   std::normal_distribution<double> N(0, 1);
@@ -156,51 +162,37 @@ TEST(SolidBracketExact, TiltedCoinsWithinRoundingOfTouchingClaimNoFalseOverlap) 
               overlaps);
 }
 
-// A tol below what doubles resolve at the coordinates: the coins 1e6 from
-// the origin (coordinates' ulps 1.2e-10, rounding allowances about 6e-8)
-// asked for a bracket of 1e-12. The answer still holds the exact gap, says
-// it did not converge and why, and is as narrow as the allowances permit.
-// (Every pair of the two faces, exact lines, is short of the cut by the
-// rounding alone: the query used to refine them until the 25,000 leaf pairs
-// of the work budget ran out, about 90 ms, and left a bracket as wide as the
-// gap.)
-TEST(SolidBracketExact, CoinsFarOffAtTolBelowRoundingSayWhy) {
-  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/rounding_stacked_coins.json");
+// A tol below what doubles resolve at the coordinates: two solids of `file`
+// 1e6 from the origin (coordinates' ulps 1.2e-10, rounding allowances about
+// 6e-8), `sep` apart along `axis` where they are `contact` thick together,
+// asked for a bracket of 1e-12. The answer still holds the exact distance
+// (sep less contact, of the doubles, in binary128), says it did not converge
+// and why, and is as narrow as the allowances permit. (Every pair near the
+// contact is short of the cut by the rounding alone: the query used to
+// refine them until the 25,000 leaf pairs of the work budget ran out, about
+// 0.1 s, and left a bracket as wide as the gap: 4.8e-4 for the balls.)
+void expect_rounding_limited(const char* file, int axis, double sep, double contact) {
+  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + file);
   const CaseModel m = build_case_model(c, 1e-5);
   PosedSolid a = m.instances[0], b = m.instances[1];
   a.t = Vec3(1e6, -7e5, 3e5);
   b.t = a.t;
-  b.t.z() += 0.1 + 0.01;
-  const Quad d = static_cast<Quad>(b.t.z()) - static_cast<Quad>(a.t.z()) - static_cast<Quad>(0.1);
+  b.t[axis] += sep;
+  const Quad d = static_cast<Quad>(b.t[axis]) - static_cast<Quad>(a.t[axis]) - static_cast<Quad>(contact);
   DistanceOptions o;
   o.tol = 1e-12;
   const SolidDistanceResult res = solid_distance(a, b, o);
-  EXPECT_TRUE(static_cast<Quad>(res.lower) <= d && d <= static_cast<Quad>(res.upper));
-  EXPECT_FALSE(res.converged);
-  EXPECT_NE(res.reason.find("rounding of coordinates"), std::string::npos) << res.reason;
-  EXPECT_LT(res.upper - res.lower, 3e-7);
-  EXPECT_LT(res.stats.leaf_pairs, 2000);
+  EXPECT_TRUE(static_cast<Quad>(res.lower) <= d && d <= static_cast<Quad>(res.upper)) << file;
+  EXPECT_FALSE(res.converged) << file;
+  EXPECT_NE(res.reason.find("rounding of coordinates"), std::string::npos) << file << ": " << res.reason;
+  EXPECT_LT(res.upper - res.lower, 3e-7) << file;
+  EXPECT_LT(res.stats.leaf_pairs, 2000) << file;
 }
 
-// Balls 1e6 from the origin at tol 1e-12: the bracket ends within a few
-// rounding allowances of the coordinates (about 6e-8 there), holds the exact
-// distance, and its reason says that tol is below what doubles resolve there.
-TEST(SolidBracketExact, BallsFarOffAtTolBelowRoundingSayWhy) {
-  const Case c = read_case(std::string(REVDIST_SOURCE_DIR) + "/cases/regressions/upper_rounded_outward_balls.json");
-  const CaseModel m = build_case_model(c, 1e-5);
-  PosedSolid a = m.instances[0], b = m.instances[1];
-  a.t = Vec3(1e6, -7e5, 3e5);
-  b.t = a.t;
-  b.t.x() += 0.05;
-  const Quad d = static_cast<Quad>(b.t.x()) - static_cast<Quad>(a.t.x()) - 2 * static_cast<Quad>(0.01);
-  DistanceOptions o;
-  o.tol = 1e-12;
-  const SolidDistanceResult res = solid_distance(a, b, o);
-  EXPECT_TRUE(static_cast<Quad>(res.lower) <= d && d <= static_cast<Quad>(res.upper));
-  EXPECT_FALSE(res.converged);
-  EXPECT_NE(res.reason.find("rounding of coordinates"), std::string::npos) << res.reason;
-  EXPECT_LT(res.upper - res.lower, 3e-7);
-  EXPECT_LT(res.stats.leaf_pairs, 2000);
+TEST(SolidBracketExact, FarOffAtTolBelowRoundingSayWhy) {
+  // Stacked coins 0.1 thick (faces of exact lines), and balls of radius 0.01.
+  expect_rounding_limited("/cases/regressions/rounding_stacked_coins.json", 2, 0.11, 0.1);
+  expect_rounding_limited("/cases/regressions/upper_rounded_outward_balls.json", 0, 0.05, 0.02);
 }
 
 }  // namespace
