@@ -438,18 +438,47 @@ PairAnswer solve(const CircleFrame& p, const CircleFrame& q, double sigma) {
 
 }  // namespace
 
-double circle3_circle3_distance_value(const Circle3& a, const Circle3& b) {
-  const bool swap = param_is_a(a, b);
-  const Circle3& p = swap ? a : b;
-  const Circle3& q = swap ? b : a;
+namespace {
+// circle3_circle3_distance_value with the two circles' frames made.
+double distance_value(const Circle3& a, const CircleFrame& fa, const Circle3& b, const CircleFrame& fb) {
+  const bool swap = param_is_a(a, b);  // p, parameterised, is the larger
+  const CircleFrame& fp = swap ? fa : fb;
+  const CircleFrame& fq = swap ? fb : fa;
   const double sigma = circle_pair_sigma(a, b);
-  const CircleFrame fp = make_frame(p), fq = make_frame(q);
   const PairCoeffs k = make_coeffs(fp, fq, sigma);
   // The named configurations keep their closed forms: points (q's radius is
   // the smaller), parallel planes, concentric.
-  if (q.radius == 0 || parallel_planes(fp, fq) || concentric(k)) return circle3_circle3_distance(a, b).distance;
+  if (fq.radius == 0 || parallel_planes(fp, fq) || concentric(k)) return circle3_circle3_distance(a, b).distance;
   double fs[kSamples];
   return std::sqrt(std::max(0.0, least(k, fs).f)) / sigma;
+}
+
+CircleFrame frame_of(const Circle3& c, const CircleNormalFrame& f) {
+  CircleFrame r;
+  r.center = c.center;
+  r.n = f.n;
+  r.u = f.u;
+  r.v = f.v;
+  r.radius = c.radius;
+  return r;
+}
+}  // namespace
+
+double circle3_circle3_distance_value(const Circle3& a, const Circle3& b) {
+  return distance_value(a, make_frame(a), b, make_frame(b));
+}
+
+CircleNormalFrame circle_normal_frame(const Vec3& normal) {
+  CircleNormalFrame f;
+  f.normal = normal;
+  f.n = unit_normal(normal);
+  plane_basis(f.n, &f.u, &f.v);
+  return f;
+}
+
+double circle3_circle3_distance_value(const Circle3& a, const CircleNormalFrame& fa, const Circle3& b,
+                                      const CircleNormalFrame& fb) {
+  return distance_value(a, frame_of(a, fa), b, frame_of(b, fb));
 }
 
 Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b) {

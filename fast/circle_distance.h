@@ -47,6 +47,18 @@ Circle3Circle3Result circle3_circle3_distance(const Circle3& a, const Circle3& b
 // its tests for infinitely many closest pairs. For lower bounds.
 double circle3_circle3_distance_value(const Circle3& a, const Circle3& b);
 
+// The plane frame of every circle about one normal (a solid's parts all lie
+// about its axis), prepared once: circle3_circle3_distance_value of circles
+// a and b whose normals are fa's and fb's gives the same value, bit for bit,
+// without rebuilding the two frames at each call.
+struct CircleNormalFrame {
+  Vec3 normal;   // as given (a circle's `normal` must equal it)
+  Vec3 n, u, v;  // unit normal and in-plane basis, u x v = n
+};
+CircleNormalFrame circle_normal_frame(const Vec3& normal);
+double circle3_circle3_distance_value(const Circle3& a, const CircleNormalFrame& fa, const Circle3& b,
+                                      const CircleNormalFrame& fb);
+
 // The binormal lines of a and b, one entry per line, so size() is their count
 // (README, `circles`): a line is a segment PQ, P on a, Q on b, normal to both
 // (to a point circle: any direction), of length above 64ε·2^e (2^e the power

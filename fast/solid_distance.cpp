@@ -85,8 +85,11 @@ struct Solid {
   std::deque<BiarcFit> refined_fits;  // the refinements' fits (a deque: references stay valid)
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
+  CircleNormalFrame frame;  // the plane frame of every part's circle (all about the axis)
 
-  explicit Solid(const PosedSolid& ps) : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack) {
+  explicit Solid(const PosedSolid& ps)
+      : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack),
+        frame(circle_normal_frame(axis)) {
     parts.reserve(256);
     parts.push_back(from_node(0, 0));
     place(parts.back());
@@ -479,7 +482,7 @@ double cheap_bound(const CircleBoundAxes& axes, const Part& pa, const Part& pb) 
 // same leaf pairs). (Bounds from the fits' patches at inner nodes cut node
 // pairs by a fifth but cost more than they save: 25% more instructions.)
 double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb) {
-  return circle3_circle3_distance_value(A.disk_circle(pa), B.disk_circle(pb)) - pa.disk_r - pb.disk_r;
+  return circle3_circle3_distance_value(A.disk_circle(pa), A.frame, B.disk_circle(pb), B.frame) - pa.disk_r - pb.disk_r;
 }
 
 // The query (Algorithm 2), from a warm start when one is given.

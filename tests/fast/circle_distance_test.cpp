@@ -243,7 +243,8 @@ TEST(CircleDistanceMetamorphic, SwapAgreesWithBothParameterisations) {
 
 // circle3_circle3_distance_value, the traversal's bound of two fits' tori:
 // the same method without the points and the test for infinitely many pairs,
-// so the same distance bit for bit on every family, named cases included.
+// so the same distance bit for bit on every family, named cases included;
+// also with the frames prepared once per normal (circle_normal_frame).
 TEST(CircleDistanceValue, SameDistanceAsTheFullSolve) {
   Rng rng(test_seed() + 3);
   int compared = 0;
@@ -254,6 +255,12 @@ TEST(CircleDistanceValue, SameDistanceAsTheFullSolve) {
           << fam.name << " #" << i;
       ASSERT_EQ(circle3_circle3_distance_value(k.b, k.a), circle3_circle3_distance(k.a, k.b).distance)
           << fam.name << " #" << i << " (b, a)";
+      // With the frames prepared once per normal (the traversal's form).
+      const CircleNormalFrame fa = circle_normal_frame(k.a.normal), fb = circle_normal_frame(k.b.normal);
+      ASSERT_EQ(circle3_circle3_distance_value(k.a, fa, k.b, fb), circle3_circle3_distance(k.a, k.b).distance)
+          << fam.name << " #" << i << " (prepared frames)";
+      ASSERT_EQ(circle3_circle3_distance_value(k.b, fb, k.a, fa), circle3_circle3_distance(k.a, k.b).distance)
+          << fam.name << " #" << i << " (prepared frames, b, a)";
       ++compared;
     }
   EXPECT_GT(compared, 1000);
