@@ -611,7 +611,8 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y) {
 namespace {
 // Damped Newton descent of a function of P's parameters (u, th), u kept in
 // [0, 1], from `start`, until a Newton step promises less than `resolution`
-// (at most 8 steps): patch_pair_descent's and patch_deep_point's. g(q, c, s)
+// (at most 8 steps), on finite differences: patch_deep_point's, and
+// patch_pair_descent's where its closed-form derivatives fail. g(q, c, s)
 // is the function at meridian point q and the azimuth of cosine c and sine s
 // (in bp's frame). Where the function is not convex in the azimuth, the step
 // tried first there is `flat_step` radians downhill (then halved). Returns
@@ -706,9 +707,8 @@ namespace {
 // Hessian is e_phi e_phi^T / r, so in the world grad = w_r e_r + w_z a and
 // Hess = k t t^T + (w_r / r) e_phi e_phi^T. P's point is x(u, th) = o +
 // m_r(u) e_R(th) + m_z(u) a_P, with m(u) P's meridian point.
-using PairJet = PatchPairJet;
-PairJet pair_jet(const Patch& P, const BoxedPatch& bp, const Patch& Q, const GaussWindow& win, double u, double th) {
-  PairJet j;
+PatchPairJet pair_jet(const Patch& P, const BoxedPatch& bp, const Patch& Q, const GaussWindow& win, double u, double th) {
+  PatchPairJet j;
   Vec2 mu;
   const double ang = u * P.sweep;
   const Vec2 m = P.straight ? meridian_point(P, u, 1.0, 0.0, &mu) : meridian_point(P, u, std::cos(ang), std::sin(ang), &mu);
@@ -772,7 +772,7 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
   // the halvings at 1/32 cost more still, 141.7.)
   double u = std::isfinite(start.x()) ? std::clamp(start.x(), 0.0, 1.0) : 0.5;
   double th = std::isfinite(start.y()) ? start.y() : 0.0;
-  PairJet j = pair_jet(P, bp, Q, win, u, th);
+  PatchPairJet j = pair_jet(P, bp, Q, win, u, th);
   bool rough = false;  // stopped where the derivatives do not hold
   for (int it = 0; it < 16; ++it) {
     if (!j.smooth) {
@@ -800,7 +800,7 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
     bool moved = false;
     for (double lam = 1.0; lam > 1e-3; lam *= 0.5) {
       const double un = std::clamp(u + lam * su, 0.0, 1.0), tn = th + lam * st;
-      const PairJet jn = pair_jet(P, bp, Q, win, un, tn);
+      const PatchPairJet jn = pair_jet(P, bp, Q, win, un, tn);
       if (jn.f < j.f) {
         moved = std::abs(un - u) > 1e-9 || std::abs(tn - th) * bp.rmax > 1e-9 * (bp.rmax + bp.len);
         u = un, th = tn, j = jn;

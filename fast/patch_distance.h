@@ -165,8 +165,9 @@ struct PatchPairJet {
 PatchPairJet patch_pair_jet(const Patch& P, const Patch& Q, double u, double th);
 
 // A point of patch P deep on one side of Q's whole surface (the full torus or
-// cone it lies on): the same descent as patch_pair_descent, of side * g_Q
-// (patch_surface_function, side +1 or -1) over P's parameters, from the
+// cone it lies on): a damped Newton descent as patch_pair_descent's, but on
+// finite differences, of side * g_Q (patch_surface_function, side +1 or -1)
+// over P's parameters, from the
 // parameters of world point `near`. A candidate for the overlap probes of
 // crossing patches (a point of one solid inside the other), not a proof.
 Vec3 patch_deep_point(const Patch& P, const Patch& Q, const Vec3& near, double side, double resolution);

@@ -281,10 +281,6 @@ struct Solid {
     return fit(parts[i]);
   }
 
-  // The patch of fit f's arc nearest world point x (arcs of no length only
-  // when the fit has no other), and in *y, when given, that patch's point
-  // nearest x: within f.eps of the surface, not a genuine surface point
-  // (true_point maps it to one), and a tenth of true_point's cost.
   // The patches of the fit nearest_patch saw last: the witness's rounds
   // come back to the same fit, and a patch costs a sine and cosine.
   // (Measured on the motion probe at eps 1e-5: 134.9 -> 133.9 M
@@ -302,6 +298,10 @@ struct Solid {
     return last_.p;
   }
 
+  // The patch of fit f's arc nearest world point x (arcs of no length only
+  // when the fit has no other), and in *y, when given, that patch's point
+  // nearest x: within f.eps of the surface, not a genuine surface point
+  // (true_point maps it to one), and a tenth of true_point's cost.
   Patch nearest_patch(const BiarcFit& f, const Vec3& x, Vec3* y = nullptr) const {
     Patch best;
     Vec3 best_y;
