@@ -556,6 +556,20 @@ TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
   EXPECT_GE(10 * at_min, 9 * separated);
 }
 
+// patch_pair_jet's derivatives by central differences of its own distance:
+// steps h1 for the first, h2 for the second.
+PatchPairJet differenced_jet(const Patch& P, const Patch& Q, double u, double th, double h1, double h2) {
+  auto f = [&](double du, double dt) { return patch_pair_jet(P, Q, u + du, th + dt).f; };
+  PatchPairJet d;
+  d.f = f(0, 0);
+  d.fu = (f(h1, 0) - f(-h1, 0)) / (2 * h1);
+  d.ft = (f(0, h1) - f(0, -h1)) / (2 * h1);
+  d.fuu = (f(h2, 0) - 2 * d.f + f(-h2, 0)) / (h2 * h2);
+  d.ftt = (f(0, h2) - 2 * d.f + f(0, -h2)) / (h2 * h2);
+  d.fut = (f(h2, h2) - f(h2, -h2) - f(-h2, h2) + f(-h2, -h2)) / (4 * h2 * h2);
+  return d;
+}
+
 // The descent's derivatives (patch_pair_jet) against central differences
 // of its own distance, at random points of A: where both agree on which of
 // Q's features is nearest (an end, the arc, the segment) the differences
@@ -573,17 +587,12 @@ TEST_P(PatchVsBrute, PairJetMatchesFiniteDifferences) {
     const PatchPairJet j = patch_pair_jet(p.A, p.B, u, th);
     if (!j.smooth) continue;
     ++tried;
-    auto f = [&](double du, double dt) { return patch_pair_jet(p.A, p.B, u + du, th + dt).f; };
-    const double h1 = 1e-6, h2 = 1e-4;
-    const double fu = (f(h1, 0) - f(-h1, 0)) / (2 * h1), ft = (f(0, h1) - f(0, -h1)) / (2 * h1);
-    const double fuu = (f(h2, 0) - 2 * j.f + f(-h2, 0)) / (h2 * h2);
-    const double ftt = (f(0, h2) - 2 * j.f + f(0, -h2)) / (h2 * h2);
-    const double fut = (f(h2, h2) - f(h2, -h2) - f(-h2, h2) + f(-h2, -h2)) / (4 * h2 * h2);
+    const PatchPairJet d = differenced_jet(p.A, p.B, u, th, 1e-6, 1e-4);
     // Scale: the patches' coordinates (the differences lose eps * scale / h^2).
     const double scale = std::max({p.A.o.norm() + 8, p.B.o.norm() + 8, std::abs(j.f)});
     auto close = [&](double a, double b, double tol) { return std::abs(a - b) <= tol * (scale + std::abs(b)); };
-    if (close(fu, j.fu, 1e-6) && close(ft, j.ft, 1e-6) && close(fuu, j.fuu, 1e-4) && close(ftt, j.ftt, 1e-4) &&
-        close(fut, j.fut, 1e-4))
+    if (close(d.fu, j.fu, 1e-6) && close(d.ft, j.ft, 1e-6) && close(d.fuu, j.fuu, 1e-4) && close(d.ftt, j.ftt, 1e-4) &&
+        close(d.fut, j.fut, 1e-4))
       ++agree;
   }
   std::printf("%s: closed-form derivatives match the differences at %d of %d points\n", k.name, agree, tried);
@@ -607,12 +616,9 @@ TEST(PatchPairJet, InsideATorusTubeMatchesFiniteDifferences) {
     const PatchPairJet j = patch_pair_jet(P, Q, u, th);
     if (!j.smooth) continue;
     ++tried;
-    auto f = [&](double du, double dt) { return patch_pair_jet(P, Q, u + du, th + dt).f; };
-    const double h = 1e-4;
-    const double fuu = (f(h, 0) - 2 * j.f + f(-h, 0)) / (h * h), ftt = (f(0, h) - 2 * j.f + f(0, -h)) / (h * h);
-    const double fut = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4 * h * h);
-    if (std::abs(fuu - j.fuu) <= 1e-4 * (4 + std::abs(j.fuu)) && std::abs(ftt - j.ftt) <= 1e-4 * (4 + std::abs(j.ftt)) &&
-        std::abs(fut - j.fut) <= 1e-4 * (4 + std::abs(j.fut)))
+    const PatchPairJet d = differenced_jet(P, Q, u, th, 1e-6, 1e-4);
+    auto close = [](double a, double b) { return std::abs(a - b) <= 1e-4 * (4 + std::abs(b)); };
+    if (close(d.fuu, j.fuu) && close(d.ftt, j.ftt) && close(d.fut, j.fut))
       ++agree;
   }
   std::printf("inside the tube: closed-form second derivatives match the differences at %d of %d points\n", agree, tried);
