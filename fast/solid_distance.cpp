@@ -622,6 +622,43 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       patch_pair_descent(px, py, x, 1e-3 * opt.tol, &xs, &ys2);
       if (xs.allFinite() && ys2.allFinite()) x = xs, y = ys2;
     }
+    // A descent that ends at an end of its patch (P's profile fraction
+    // clamped to 0 or 1, or Q's nearest point at one of Q's end circles) has
+    // stopped at the patch's boundary, not at a minimum: the fit and patch
+    // nearest the pair are taken again on each side that ended there, and a
+    // descent on the new pair, up to three times while the pair gets
+    // closer. (End points are met to rounding; 1e-9 of the coordinates is far
+    // above it and far below any patch.) Measured on the motion probe, M
+    // instructions for 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6:
+    // 117.7 / 95.5 / 242.8 / 177.1 -> 113.3 / 93.9 / 231.4 / 176.4 (local
+    // boxes 45.8 -> 43.7 a query); first witnesses within tol of the answer,
+    // of 2800 queries at eps 1e-5: 865 -> 1270. (In a trial build, from
+    // 119.0 at 1e-5: two steps 115.0, and 235.4 at 1e-7 against 233.5;
+    // six 115.0; the fit's ends only, not the junction of its arcs, 117.2;
+    // from 4 rounds instead of 8, 123.0; the nearest fits by a
+    // branch-and-bound search instead of the greedy descent, 116.2.)
+    {
+      const double at = 1e-9 * coord;
+      auto at_end = [&](const Patch& p, const Vec3& w) {
+        const Vec2 q = patch_local(p, w);
+        return (q - p.p0).norm() <= at || (q - p.p1).norm() <= at;
+      };
+      auto same = [](const Patch& a, const Patch& b) { return a.p0 == b.p0 && a.p1 == b.p1; };
+      for (int step = 0; step < 3; ++step) {
+        const bool end_x = at_end(px, x), end_y = at_end(py, y);
+        if (!end_x && !end_y) break;
+        BiarcFit nfx = fx, nfy = fy;
+        Patch npx = px, npy = py;
+        Vec3 nx = x, ny = y;
+        if (end_x) nfx = A.nearest_fit(y), npx = A.nearest_patch(nfx, y, &nx);
+        if (end_y) nfy = B.nearest_fit(nx), npy = B.nearest_patch(nfy, nx, &ny);
+        if (same(npx, px) && same(npy, py)) break;
+        Vec3 xs, ys2;
+        const double d = patch_pair_descent(npx, npy, nx, 1e-3 * opt.tol, &xs, &ys2);
+        if (!(xs.allFinite() && ys2.allFinite() && d < (x - y).norm())) break;
+        fx = nfx, fy = nfy, px = npx, py = npy, x = xs, y = ys2;
+      }
+    }
     offer(A.true_point(fx, x), B.true_point(fy, y));
   }
 
