@@ -20,17 +20,24 @@ using Hom = Eigen::Vector3d;  // (w r, w z, w)
 // the window of the derivative spline over the same span (degree p - 1), so
 // every derivative is evaluated by the same de Boor loop.
 struct Window {
+  // Fixed storage (the input caps degrees at 32): the distance query maps
+  // witness points onto the input curves with a few evaluations each, and
+  // the vectors' copies cost as much as the arithmetic.
+  static constexpr int kMaxDegree = 32;
   int degree = 0;
-  std::vector<Hom> c;
-  std::vector<double> tau;
+  int t0 = 0;  // tau's first entry: differentiating drops one knot at each end
+  Hom c[kMaxDegree + 1];
+  double tau_store[2 * kMaxDegree];
+  double tau(int i) const { return tau_store[t0 + i]; }
 };
 
-Hom de_boor(const Window& w, double u, std::vector<Hom>& scratch) {
+Hom de_boor(const Window& w, double u) {
   const int p = w.degree;
-  scratch.assign(w.c.begin(), w.c.end());
+  Hom scratch[Window::kMaxDegree + 1];
+  std::copy(w.c, w.c + p + 1, scratch);
   for (int r = 1; r <= p; ++r) {
     for (int j = p; j >= r; --j) {
-      const double lo = w.tau[j - 1], hi = w.tau[j + p - r];
+      const double lo = w.tau(j - 1), hi = w.tau(j + p - r);
       // hi > lo inside a non-empty span: lo <= tau[p-1] < tau[p] <= hi.
       const double a = (u - lo) / (hi - lo);
       scratch[j] = (1.0 - a) * scratch[j - 1] + a * scratch[j];
@@ -43,14 +50,10 @@ Hom de_boor(const Window& w, double u, std::vector<Hom>& scratch) {
 void differentiate(Window& w) {
   const int p = w.degree;
   for (int j = 0; j < p; ++j) {
-    const double dt = w.tau[j + p] - w.tau[j];  // > 0 for the same reason as in de_boor
+    const double dt = w.tau(j + p) - w.tau(j);  // > 0 for the same reason as in de_boor
     w.c[j] = (p / dt) * (w.c[j + 1] - w.c[j]);
   }
-  w.c.pop_back();
-  if (p >= 1) {
-    w.tau.erase(w.tau.begin());
-    w.tau.pop_back();
-  }
+  if (p >= 1) ++w.t0;  // (and the last knot dropped: the degree bounds the reads)
   w.degree = p - 1;
 }
 
@@ -58,14 +61,15 @@ double weight(const Piece& piece, std::size_t i) {
   return piece.weights.empty() ? 1.0 : piece.weights[i];
 }
 
-// Fills w (reusing its storage) with the window of the span holding u.
+// Fills w with the window of the span holding u.
 void make_window(const Piece& piece, double u, Window& w) {
   const int p = piece.degree;
   w.degree = p;
+  w.t0 = 0;
   std::size_t first = 0;  // index of the window's first control point
   if (piece.kind == PieceKind::bezier) {
-    w.tau.assign(p, 0.0);
-    w.tau.insert(w.tau.end(), p, 1.0);
+    std::fill(w.tau_store, w.tau_store + p, 0.0);
+    std::fill(w.tau_store + p, w.tau_store + 2 * p, 1.0);
   } else {
     // Span k with t_k <= u < t_{k+1}, k in [p, n-1]; at the end of the domain the
     // last non-empty span.
@@ -74,9 +78,8 @@ void make_window(const Piece& piece, double u, Window& w) {
     const auto it = std::upper_bound(t.begin() + p + 1, t.begin() + n, u);
     const std::size_t k = static_cast<std::size_t>(it - t.begin()) - 1;
     first = k - p;
-    w.tau.assign(t.begin() + (k - p + 1), t.begin() + (k + p + 1));
+    std::copy(t.begin() + (k - p + 1), t.begin() + (k + p + 1), w.tau_store);
   }
-  w.c.resize(p + 1);
   for (int j = 0; j <= p; ++j) {
     const std::size_t i = first + j;
     const double wi = weight(piece, i);
@@ -84,22 +87,13 @@ void make_window(const Piece& piece, double u, Window& w) {
   }
 }
 
-Window make_window(const Piece& piece, double u) {
-  Window w;
-  make_window(piece, u, w);
-  return w;
-}
-
 void spline_derivatives(const Piece& piece, double u, int n, Vec2* out) {
-  // Per-thread storage, reused: the distance query maps witness points onto
-  // the input curves with many evaluations, which allocated on every call.
-  thread_local Window w;
-  thread_local std::vector<Hom> scratch;
+  Window w;
   make_window(piece, u, w);
   Hom h[4];
   for (int k = 0; k <= n; ++k) {
-    h[k] = w.degree >= 0 ? de_boor(w, u, scratch) : Hom::Zero();
-    if (w.degree >= 0) differentiate(w);
+    h[k] = w.degree >= 0 ? de_boor(w, u) : Hom::Zero();
+    if (w.degree >= 0 && k < n) differentiate(w);
   }
   // Quotient rule on C = A / W: A^(k) = sum_i binom(k, i) W^(i) C^(k-i).
   static const double binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
@@ -115,11 +109,12 @@ void spline_derivatives(const Piece& piece, double u, int n, Vec2* out) {
 // with a different parameter at each level.
 Hom blossom(const Window& w, const double* args) {
   const int p = w.degree;
-  std::vector<Hom> c(w.c);
+  Hom c[Window::kMaxDegree + 1];
+  std::copy(w.c, w.c + p + 1, c);
   for (int r = 1; r <= p; ++r) {
     const double u = args[r - 1];
     for (int j = p; j >= r; --j) {
-      const double lo = w.tau[j - 1], hi = w.tau[j + p - r];
+      const double lo = w.tau(j - 1), hi = w.tau(j + p - r);
       const double a = (u - lo) / (hi - lo);
       c[j] = (1.0 - a) * c[j - 1] + a * c[j];
     }
@@ -192,7 +187,8 @@ std::vector<BezierSegment> piece_bezier_segments(const Piece& piece) {
       std::vector<double> args(p);
       for (std::size_t k = p; k < n; ++k) {
         if (!(t[k] < t[k + 1])) continue;
-        const Window w = make_window(piece, t[k]);
+        Window w;
+        make_window(piece, t[k], w);
         std::vector<Hom> h(p + 1);
         // Bezier point j of span [a, b] is the blossom at (a, ..., a, b, ..., b) with j b's.
         for (int j = 0; j <= p; ++j) {
