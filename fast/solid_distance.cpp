@@ -517,6 +517,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   auto in_a = [&](const Vec3& t) { return A.side_of(t, round) == Side::inside ? (shared = t, true) : false; };
 
   double ub = kInf;
+  // The witness's overlap probe: its points, then the input curve along their
+  // meridians from the spans of fits fa and fb (alternating projection stops
+  // near a crossing, where no point is inside; a step along the profile goes
+  // in). True when it proves an overlap (the point in `shared`).
+  auto probe_witness = [&](const BiarcFit& fa, const BiarcFit& fb) {
+    const Vec3 wa = res.point_a, wb = res.point_b;
+    return in_b(wa) || in_a(wb) || A.along_meridian(fa, wa, 3, in_b) || B.along_meridian(fb, wb, 3, in_a);
+  };
   // The queue stops below cut(): the bracket then meets tol or rel_tol.
   const double rel = std::max(opt.rel_tol, 0.0);
   double tol = opt.tol;  // (relaxed below when doubles cannot resolve it)
@@ -660,6 +668,18 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       }
     }
     offer(A.true_point(fx, x), B.true_point(fy, y));
+    // Alternating projection between crossing surfaces converges to their
+    // crossing: a first witness within its fits' errors and tol of each
+    // other gets the overlap probe now, before any traversal, instead of
+    // when a leaf pair's patches are found to cross. Measured on the motion
+    // probe, M instructions for the 198 proven overlaps of 3000 queries at
+    // eps 1e-5 and 1e-3: 44.8 / 33.3 -> 35.0 / 24.2; for the 600 queries at
+    // eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6: 112.5 / 93.0 / 230.1 / 172.8 ->
+    // 110.5 / 92.1 / 230.0 / 171.7. (Within 3 and 10 times that: 33.4 and
+    // 31.9 on the overlaps, but 93.9 and 98.0 for the 600 at eps 1e-3, where
+    // it takes in most near contacts; the points alone, without the
+    // meridians: 38.8 on the overlaps.)
+    if (ub <= fx.eps + fy.eps + opt.tol && probe_witness(fx, fy)) return proven_overlap(shared);
   }
 
   std::priority_queue<Entry> heap;
@@ -691,14 +711,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // earlier ones (which made long queries quadratic in their leaf pairs).
   NeighbourTable neighbours;
   bool tried_witness = false;  // the witness's overlap probe (once a query)
-  // The witness's overlap probe: its points, then the input curve along their
-  // meridians from the spans of fits fa and fb (alternating projection stops
-  // near a crossing, where no point is inside; a step along the profile goes
-  // in). True when it proves an overlap (the point in `shared`).
   auto witness_probe = [&](const BiarcFit& fa, const BiarcFit& fb) {
     tried_witness = true;
-    const Vec3 wa = res.point_a, wb = res.point_b;
-    return in_b(wa) || in_a(wb) || A.along_meridian(fa, wa, 3, in_b) || B.along_meridian(fb, wb, 3, in_a);
+    return probe_witness(fa, fb);
   };
   // The deep points of patches P (of fit fa) and Q (of fb) that may cross:
   // each patch's points deepest on either side of the other's whole surface
