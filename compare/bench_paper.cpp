@@ -481,7 +481,7 @@ class Runner {
       if (!(r.certified && r.width_reached)) {
         std::ostringstream m;
         m << "certified reference: " << pm.name << " frame " << j << " not counted: " << (r.certified ? "proven [" : "unproven [")
-          << r.lower << ", " << r.upper << "] after " << r.boxes << " boxes"
+          << r.lower << ", " << r.upper << "] after " << r.boxes << " boxes, " << r.time_ms / 1000 << " s CPU"
           << (r.reason.empty() ? std::string() : " (" + r.reason + ")");
         say(m.str());
       }
