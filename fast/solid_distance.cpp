@@ -299,16 +299,30 @@ struct Solid {
   }
 
   // The patch of fit f's arc nearest world point x (arcs of no length only
-  // when the fit has no other), and in *y, when given, that patch's point
-  // nearest x: within f.eps of the surface, not a genuine surface point
-  // (true_point maps it to one), and a tenth of true_point's cost.
+  // when the fit has no other; of two arcs, the one on x's side of their
+  // junction's normal), and in *y, when given, that patch's point nearest x:
+  // within f.eps of the surface, not a genuine surface point (true_point
+  // maps it to one), and a tenth of true_point's cost. A candidate maker for
+  // the witness and the overlap probes: nothing proven rests on it.
   Patch nearest_patch(const BiarcFit& f, const Vec3& x, Vec3* y = nullptr) const {
     Patch best;
     Vec3 best_y;
     double best_d = kInf;
     const Patch* ps = fit_patches(f);
+    // Of a biarc's two arcs, the one on x's side of the normal line at
+    // their junction (the line that parts their nearest points near the
+    // curve; a point it misplaces only makes a worse candidate). Measured on
+    // the motion probe, M instructions for 600 queries at eps 1e-5 / 1e-3 /
+    // 1e-7 / tol 1e-6: both arcs 110.6 / 92.2 / 230.2 / 171.9, one 109.6 /
+    // 91.3 / 229.2 / 170.9.
+    int only = -1;
+    if (f.arcs == 2 && f.arc[0].length > 0 && f.arc[1].length > 0) {
+      const Vec3 d = s.R.transpose() * (x - s.t);
+      const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+      only = (q - f.arc[1].start).dot(f.arc[1].tangent) < 0 ? 0 : 1;
+    }
     for (int k = 0; k < f.arcs; ++k) {
-      if (f.arc[k].length <= 0) continue;
+      if (f.arc[k].length <= 0 || (only >= 0 && k != only)) continue;
       const Patch& p = ps[k];
       Vec3 yk;
       if (const double d = patch_nearest(p, x, &yk); d < best_d) best_d = d, best = p, best_y = yk;
