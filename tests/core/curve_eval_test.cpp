@@ -118,6 +118,35 @@ TEST(CurveEval, BezierEqualsItsBSpline) {
   }
 }
 
+// The input caps degrees at 32, and the evaluator's windows hold the 33
+// control points and 64 knots of one span of that degree (fixed storage): a
+// rational Bezier of degree 32 and the same curve as a clamped B-spline agree
+// with the independent de Casteljau evaluation, point and first derivative.
+TEST(CurveEval, HighestDegreeFitsTheWindow) {
+  std::vector<Vec2> pts;
+  std::vector<double> w;
+  for (int i = 0; i <= 32; ++i) {
+    pts.emplace_back(1 + 0.3 * std::sin(i), 2.0 * i / 32);
+    w.push_back(1 + 0.5 * std::cos(0.7 * i));
+  }
+  std::vector<double> knots(33, 0.0);
+  knots.insert(knots.end(), 33, 1.0);
+  const Piece a = bezier(pts, w);
+  const Piece b = bspline(32, knots, pts, w);
+  const double h = 1e-6;
+  for (double u : {0.0, 0.1, 0.37, 0.5, 0.81, 1.0}) {
+    for (const Piece* p : {&a, &b}) {
+      Vec2 d[2];
+      piece_derivatives(*p, u, 1, d);
+      EXPECT_NEAR((d[0] - reference_point(a, u)).norm(), 0.0, 1e-13) << "u=" << u;
+      if (u > 0 && u < 1) {
+        const Vec2 fd = (reference_point(a, u + h) - reference_point(a, u - h)) / (2 * h);
+        EXPECT_NEAR((fd - d[1]).norm() / (1 + d[1].norm()), 0.0, 1e-6) << "u=" << u;
+      }
+    }
+  }
+}
+
 TEST(CurveEval, RationalQuarterCircleIsExact) {
   // The quadratic rational Bezier with middle weight cos(45 deg) is the unit quarter circle.
   const Piece p = bezier({{1, 0}, {1, 1}, {0, 1}}, {1, std::sqrt(0.5), 1});
