@@ -160,7 +160,8 @@ Piece read_piece(const Json& j, const JsonWhere& where) {
       reject_unknown_members(j, {"bezier", "weights"}, where);
       p.points = read_points(body, where);
       if (p.points.size() < 2) where.fail("a bezier needs at least 2 points, got " + std::to_string(p.points.size()));
-      if (p.points.size() > 33) where.fail("bezier degree " + std::to_string(p.points.size() - 1) + " > 32");
+      if (p.points.size() > kMaxPieceDegree + 1)
+        where.fail("bezier degree " + std::to_string(p.points.size() - 1) + " > " + std::to_string(kMaxPieceDegree));
       p.degree = static_cast<int>(p.points.size()) - 1;
       if (j.contains("weights")) p.weights = read_weights(j["weights"], p.points.size(), where);
       break;
@@ -170,7 +171,8 @@ Piece read_piece(const Json& j, const JsonWhere& where) {
       if (!body.is_object()) where.fail("\"bspline\" must be an object {degree, knots, points, weights?}");
       reject_unknown_members(body, {"degree", "knots", "points", "weights"}, where);
       const double deg = read_number(require(body, "degree", where), sub(where, "degree"));
-      if (deg != std::floor(deg) || deg < 1 || deg > 32) where.fail("degree " + fmt(deg) + " is not an integer in 1..32");
+      if (deg != std::floor(deg) || deg < 1 || deg > kMaxPieceDegree)
+        where.fail("degree " + fmt(deg) + " is not an integer in 1.." + std::to_string(kMaxPieceDegree));
       p.degree = static_cast<int>(deg);
       p.points = read_points(require(body, "points", where), where);
       const Json& knots = require(body, "knots", where);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace revdist {
@@ -23,7 +25,7 @@ struct Window {
   // Fixed storage (the input caps degrees at 32): the distance query maps
   // witness points onto the input curves with a few evaluations each, and
   // the vectors' copies cost as much as the arithmetic.
-  static constexpr int kMaxDegree = 32;
+  static constexpr int kMaxDegree = kMaxPieceDegree;
   int degree = 0;
   int t0 = 0;  // tau's first entry: differentiating drops one knot at each end
   Hom c[kMaxDegree + 1];
@@ -64,6 +66,9 @@ double weight(const Piece& piece, std::size_t i) {
 // Fills w with the window of the span holding u.
 void make_window(const Piece& piece, double u, Window& w) {
   const int p = piece.degree;
+  if (p < 0 || p > Window::kMaxDegree)  // (the windows' storage; the case reader refuses these)
+    throw std::invalid_argument("piece of degree " + std::to_string(p) + ": degrees are 0.." +
+                                std::to_string(Window::kMaxDegree));
   w.degree = p;
   w.t0 = 0;
   std::size_t first = 0;  // index of the window's first control point

@@ -19,6 +19,9 @@ enum class PieceKind { line, arc, bezier, bspline };
 //   arc:     points = {p0, pm, p1} (p0 to p1 through pm), degree 2
 //   bezier:  points = control points, degree = points.size() - 1, weights optional
 //   bspline: points, knots (clamped, non-decreasing), degree, weights optional
+// Degrees are at most kMaxPieceDegree (the case reader enforces it; the
+// evaluator, core/curve_eval.h, refuses a higher one with std::invalid_argument).
+constexpr int kMaxPieceDegree = 32;
 struct Piece {
   PieceKind kind = PieceKind::line;
   int degree = 1;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace revdist {
@@ -145,6 +146,10 @@ TEST(CurveEval, HighestDegreeFitsTheWindow) {
       }
     }
   }
+  // One degree more (a piece built by hand: the case reader refuses it) is
+  // refused too, not evaluated past the windows' storage.
+  pts.emplace_back(1, 2.1);
+  EXPECT_THROW(piece_point(bezier(pts), 0.5), std::invalid_argument);
 }
 
 TEST(CurveEval, RationalQuarterCircleIsExact) {
