@@ -649,8 +649,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // stopped at the patch's boundary, not at a minimum: the fit and patch
     // nearest the pair are taken again on each side that ended there, and a
     // descent on the new pair, up to three times while the pair gets
-    // closer. (End points are met to rounding; 1e-9 of the coordinates is far
-    // above it and far below any patch.) Measured on the motion probe, M
+    // closer. (End points are met to the rounding of the coordinates, well
+    // within `round`; far from the origin a patch shorter than that is all
+    // ends, which only costs the steps.) Measured on the motion probe, M
     // instructions for 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6:
     // 117.7 / 95.5 / 242.8 / 177.1 -> 113.3 / 93.9 / 231.4 / 176.4 (local
     // boxes 45.8 -> 43.7 a query); first witnesses within tol of the answer,
@@ -660,10 +661,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // from 4 rounds instead of 8, 123.0; the nearest fits by a
     // branch-and-bound search instead of the greedy descent, 116.2.)
     {
-      const double at = 1e-9 * coord;
       auto at_end = [&](const Patch& p, const Vec3& w) {
         const Vec2 q = patch_local(p, w);
-        return (q - p.p0).norm() <= at || (q - p.p1).norm() <= at;
+        return (q - p.p0).norm() <= round || (q - p.p1).norm() <= round;
       };
       auto same = [](const Patch& a, const Patch& b) { return a.p0 == b.p0 && a.p1 == b.p1; };
       for (int step = 0; step < 3; ++step) {
