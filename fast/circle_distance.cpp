@@ -470,7 +470,6 @@ double circle3_circle3_distance_value(const Circle3& a, const Circle3& b) {
 
 CircleNormalFrame circle_normal_frame(const Vec3& normal) {
   CircleNormalFrame f;
-  f.normal = normal;
   f.n = unit_normal(normal);
   plane_basis(f.n, &f.u, &f.v);
   return f;

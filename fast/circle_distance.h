@@ -51,8 +51,8 @@ double circle3_circle3_distance_value(const Circle3& a, const Circle3& b);
 // about its axis), prepared once: circle3_circle3_distance_value of circles
 // a and b whose normals are fa's and fb's gives the same value, bit for bit,
 // without rebuilding the two frames at each call.
+// (A circle passed with frame f must have the normal f was made from.)
 struct CircleNormalFrame {
-  Vec3 normal;   // as given (a circle's `normal` must equal it)
   Vec3 n, u, v;  // unit normal and in-plane basis, u x v = n
 };
 CircleNormalFrame circle_normal_frame(const Vec3& normal);

@@ -473,7 +473,8 @@ Vec2 meridian_point(const Patch& P, double u, double ca, double sa, Vec2* qu) {
   return P.c + P.rho * dir;
 }
 Vec2 meridian_point(const Patch& P, double u, Vec2* qu = nullptr) {
-  const double ang = P.straight ? 0.0 : u * P.sweep;
+  if (P.straight) return meridian_point(P, u, 1.0, 0.0, qu);  // (a segment has no angle)
+  const double ang = u * P.sweep;
   return meridian_point(P, u, std::cos(ang), std::sin(ang), qu);
 }
 
@@ -710,8 +711,7 @@ namespace {
 PatchPairJet pair_jet(const Patch& P, const BoxedPatch& bp, const Patch& Q, const GaussWindow& win, double u, double th) {
   PatchPairJet j;
   Vec2 mu;
-  const double ang = u * P.sweep;
-  const Vec2 m = P.straight ? meridian_point(P, u, 1.0, 0.0, &mu) : meridian_point(P, u, std::cos(ang), std::sin(ang), &mu);
+  const Vec2 m = meridian_point(P, u, &mu);
   const Vec2 muu = P.straight ? Vec2::Zero() : Vec2(-P.sweep * P.sweep * (m - P.c));
   const double c = std::cos(th), s = std::sin(th);
   const Vec3 eR = c * bp.e1 + s * bp.e2, eT = c * bp.e2 - s * bp.e1;

@@ -266,11 +266,16 @@ struct Solid {
     return false;
   }
 
+  // World point x in this solid's meridian half-plane: (distance to the axis, height).
+  Vec2 meridian(const Vec3& x) const {
+    const Vec3 d = s.R.transpose() * (x - s.t);
+    return Vec2(std::hypot(d.x(), d.y()), d.z());
+  }
+
   // The fit near world point x: a greedy descent of the disks towards x's
   // meridian point.
   BiarcFit nearest_fit(const Vec3& x) {
-    const Vec3 d = s.R.transpose() * (x - s.t);
-    const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+    const Vec2 q = meridian(x);
     std::int32_t i = 0;
     long refined = 0;  // tree nodes only: parts with a fit end the descent
     while (!parts[i].has_fit) {
@@ -316,11 +321,8 @@ struct Solid {
     // 1e-7 / tol 1e-6: both arcs 110.6 / 92.2 / 230.2 / 171.9, one 109.6 /
     // 91.3 / 229.2 / 170.9.
     int only = -1;
-    if (f.arcs == 2 && f.arc[0].length > 0 && f.arc[1].length > 0) {
-      const Vec3 d = s.R.transpose() * (x - s.t);
-      const Vec2 q(std::hypot(d.x(), d.y()), d.z());
-      only = (q - f.arc[1].start).dot(f.arc[1].tangent) < 0 ? 0 : 1;
-    }
+    if (f.arcs == 2 && f.arc[0].length > 0 && f.arc[1].length > 0)
+      only = (meridian(x) - f.arc[1].start).dot(f.arc[1].tangent) < 0 ? 0 : 1;
     for (int k = 0; k < f.arcs; ++k) {
       if (f.arc[k].length <= 0 || (only >= 0 && k != only)) continue;
       const Patch& p = ps[k];
@@ -382,8 +384,7 @@ struct Solid {
   // bounded by the profile (and the axis between its ends), all within that
   // convex disk; only points inside it pay for the scan over the leaves.
   Side side_of(const Vec3& x, double margin) {
-    const Vec3 d = s.R.transpose() * (x - s.t);
-    const Vec2 q(std::hypot(d.x(), d.y()), d.z());
+    const Vec2 q = meridian(x);
     if ((q - parts[0].disk_c).norm() > parts[0].disk_r + margin) return Side::outside;
     return profile_side(tree, q, margin);
   }
