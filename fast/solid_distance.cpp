@@ -672,9 +672,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         if (!end_x && !end_y) break;
         BiarcFit nfx = fx, nfy = fy;
         Patch npx = px, npy = py;
-        Vec3 nx = x, ny = y;
+        Vec3 nx = x;  // the descent's start on A's side
         if (end_x) nfx = A.nearest_fit(y), npx = A.nearest_patch(nfx, y, &nx);
-        if (end_y) nfy = B.nearest_fit(nx), npy = B.nearest_patch(nfy, nx, &ny);
+        if (end_y) nfy = B.nearest_fit(nx), npy = B.nearest_patch(nfy, nx);
         if (same(npx, px) && same(npy, py)) break;
         Vec3 xs, ys2;
         const double d = patch_pair_descent(npx, npy, nx, 1e-3 * opt.tol, &xs, &ys2);
