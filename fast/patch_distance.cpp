@@ -148,10 +148,10 @@ struct GaussWindow {
 // gets the trivial one, without the trig calls.)
 GaussWindow gauss_window(const Patch& T) {
   if (T.straight) return {&T, Vec2(1, 0), 1.0, 0.0};
-  const double half = 0.5 * std::abs(T.sweep);
-  const double a = 0.5 * T.sweep;
-  const Vec2 mid(std::cos(a) * T.d0.x() - std::sin(a) * T.d0.y(), std::sin(a) * T.d0.x() + std::cos(a) * T.d0.y());
-  return {&T, mid, std::cos(half), std::sin(half)};
+  // One sine and cosine: the half-width is the middle's angle from d0 up to its sign.
+  const double ch = std::cos(0.5 * T.sweep), sa = std::sin(0.5 * T.sweep);
+  const Vec2 mid(ch * T.d0.x() - sa * T.d0.y(), sa * T.d0.x() + ch * T.d0.y());
+  return {&T, mid, ch, std::abs(sa)};
 }
 bool gauss_keep(const void* ctx, const Vec3& x, double r) {
   const GaussWindow& g = *static_cast<const GaussWindow*>(ctx);
