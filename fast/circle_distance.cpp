@@ -69,9 +69,9 @@ inline void turn(double d, double* c, double* s) {
 // Local minimum of f from th: Newton where f'' > 0, a guarded descent step
 // elsewhere (near q's axis f has a cusp with f'' -> -inf), each non-Newton step
 // checked to decrease f.
-Min descend(const PairCoeffs& k, double th) {
+// (c, s): th's cosine and sine.
+Min descend(const PairCoeffs& k, double th, double c, double s) {
   double trust = 0.5;  // radians; bounds every step so a step cannot jump a whole basin
-  double c = std::cos(th), s = std::sin(th);
   for (int it = 0; it < 60; ++it) {
     const Deriv d = sq_dist_derivs(k, c, s);
     const bool newton = d.f2 > 0;
@@ -111,6 +111,8 @@ Min descend(const PairCoeffs& k, double th) {
   m.f = sq_dist(k, c, s);
   return m;
 }
+
+Min descend(const PairCoeffs& k, double th) { return descend(k, th, std::cos(th), std::sin(th)); }
 
 // Evenly spaced samples of θ: the start of the descent (any local minimum is a
 // valid start; a good one saves a round).
@@ -263,10 +265,30 @@ struct Generic {
   bool infinite = false;
 };
 
+// The samples' spacing cut in kSub, with the cosines and sines of those
+// angles: the descent's start is taken on it, so that a solve needs no sine
+// and cosine to start (one in eight of the motion probe's was a start).
+constexpr int kSub = 16;
+const std::array<double, 2 * kSamples * kSub>& start_table() {
+  static const std::array<double, 2 * kSamples * kSub> t = [] {
+    std::array<double, 2 * kSamples * kSub> v{};
+    for (int i = 0; i < kSamples * kSub; ++i) {
+      v[2 * i] = std::cos(2 * kPi * i / (kSamples * kSub));
+      v[2 * i + 1] = std::sin(2 * kPi * i / (kSamples * kSub));
+    }
+    return v;
+  }();
+  return t;
+}
+
+struct Start {
+  double th, c, s;
+};
+
 // The best sample and the vertex of the parabola through it and its
-// neighbours (clamped to their span): the descent's start (a start there
-// saves Newton steps). fs: the samples.
-double sampled_start(const PairCoeffs& k, double* fs) {
+// neighbours (clamped to their span), rounded to the start table: the
+// descent's start (a start there saves Newton steps). fs: the samples.
+Start sampled_start(const PairCoeffs& k, double* fs) {
   const auto& tab = sample_table();
   int best = 0;
   for (int i = 0; i < kSamples; ++i) {
@@ -277,12 +299,15 @@ double sampled_start(const PairCoeffs& k, double* fs) {
   const double curv = fl - 2 * fs[best] + fr;
   double off = curv > 0 ? 0.5 * (fl - fr) / curv : 0.0;
   off = std::clamp(off, -1.0, 1.0);
-  return 2 * kPi * (best + off) / kSamples;
+  const int at = best * kSub + static_cast<int>(std::lround(off * kSub));  // in [-kSub, (kSamples + 1) kSub]
+  const int n = kSamples * kSub, i = (at % n + n) % n;
+  return {2 * kPi * at / n, start_table()[2 * i], start_table()[2 * i + 1]};
 }
 
 // The global minimum of f by the method of the file comment (fs: the samples).
 Min least(const PairCoeffs& k, double* fs) {
-  Min cur = descend(k, sampled_start(k, fs));
+  const Start st = sampled_start(k, fs);
+  Min cur = descend(k, st.th, st.c, st.s);
   vranek_rounds(k, &cur);
   // Below a distance of 1e-3 (scaled) the quartic resolves f only to ~1e-13,
   // which could cost more than 1e-10 in distance: near-contact starts as well.
