@@ -37,6 +37,7 @@
 #include <cmath>
 
 #include "fast/circle_internal.h"
+#include "fast/turn.h"
 
 namespace revdist {
 
@@ -47,24 +48,6 @@ using namespace circle_detail;
 struct Min {
   double th = 0, c = 1, s = 0, f = 0;
 };
-
-// (cos, sin) of th + d from those of th. Small steps (the Newton tail) use the
-// Taylor series, exact to rounding for |d| < 1e-2 (next terms d^7/5040, d^8/40320
-// are below ε·d and ε), instead of a libm call.
-inline void turn(double d, double* c, double* s) {
-  double cd, sd;
-  if (std::abs(d) < 1e-2) {
-    const double d2 = d * d;
-    sd = d * (1 - d2 / 6 * (1 - d2 / 20 * (1 - d2 / 42)));
-    cd = 1 - d2 / 2 * (1 - d2 / 12 * (1 - d2 / 30));
-  } else {
-    sd = std::sin(d);
-    cd = std::cos(d);
-  }
-  const double cn = *c * cd - *s * sd;
-  *s = *s * cd + *c * sd;
-  *c = cn;
-}
 
 // Local minimum of f from th: Newton where f'' > 0, a guarded descent step
 // elsewhere (near q's axis f has a cusp with f'' -> -inf), each non-Newton step
