@@ -965,7 +965,7 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget) {
 }
 
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
-                      int* evals_out, Vec2* closer) {
+                      int* evals_out, Vec2* closer, Vec2* seen) {
   // The distance from x to Q's patch is the least of up to three pieces, each
   // a smooth function of x away from Q's axis: the distances to Q's two end
   // circles (|q - p_i| in Q's half-plane) and, where x's direction from the
@@ -1029,8 +1029,11 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   constexpr int kOpen = 64;  // depth first: the stack holds the sectors and one path
   Box open[kOpen];
   int n = 0, evals = 0;
+  double nearest = std::numeric_limits<double>::infinity();  // the least centre distance so far (seen)
+  Vec2 nearest_at(std::numeric_limits<double>::infinity(), 0.0);
   auto done = [&](bool ok) {
     if (evals_out) *evals_out = evals;
+    if (seen) *seen = ok ? Vec2(std::numeric_limits<double>::infinity(), 0.0) : nearest_at;
     return ok;
   };
   const double sweep = P.straight ? 0.0 : P.sweep;
@@ -1168,8 +1171,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     }
     if (truth < cut) {  // a point of P is closer: not provable
       if (closer) *closer = Vec2(b.um, b.tm);
+      nearest_at = Vec2(std::numeric_limits<double>::infinity(), 0.0);  // `closer` is the start, not `seen`
       return done(false);
     }
+    if (truth < nearest) nearest = truth, nearest_at = Vec2(b.um, b.tm);
     if (lb >= cut) {
       least = std::min(least, lb);
       continue;

@@ -96,8 +96,12 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 // closer: when the proof fails because a box's centre is closer than cut, that
 // centre's parameters (profile fraction u, azimuth about P's axis as measured
 // by patch_point), a start for patch_pair_descent.
+// seen: when the proof fails otherwise (the budget runs out, or boxes too
+// small to clear), the parameters of the box centre nearest Q so far; the
+// start for a descent that may find the pair's minimum (and so a better
+// upper bound, at which the proof can pass).
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
-                      int* evals = nullptr, Vec2* closer = nullptr);
+                      int* evals = nullptr, Vec2* closer = nullptr, Vec2* seen = nullptr);
 
 // A proof that patch W and toroidal patch T are at least `cut` apart from T's
 // major circle alone: every point of T lies within rho_T of that circle, so

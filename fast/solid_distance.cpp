@@ -1032,14 +1032,26 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
           if (disk > 0 ? patch_profile_length(Q) * patch_max_radius(Q) < patch_profile_length(P) * patch_max_radius(P)
                        : P.straight != Q.straight ? Q.straight : patch_extent(Q, &cq) < patch_extent(P, &cp))
             std::swap(boxed, other);
-          Vec2 closer(kInf, 0.0);
-          bool proven = patches_at_least(*boxed, *other, kernel_cut, round, kLocalBudget, &local, &evals, &closer);
+          Vec2 closer(kInf, 0.0), seen(kInf, 0.0);
+          bool proven = patches_at_least(*boxed, *other, kernel_cut, round, kLocalBudget, &local, &evals, &closer, &seen);
           st.local_boxes += evals;
           if (!proven && !std::isfinite(closer.x()) && disk > 0) {
             std::swap(boxed, other);
-            proven = patches_at_least(*boxed, *other, kernel_cut, round, kLocalBudget, &local, &evals, &closer);
+            proven = patches_at_least(*boxed, *other, kernel_cut, round, kLocalBudget, &local, &evals, &closer, &seen);
             st.local_boxes += evals;
           }
+          // A proof that ran out of boxes without meeting a point closer
+          // than the cut still saw where the pair comes closest: the descent
+          // below starts there, and its pair, offered, may lower the cut
+          // enough for the retry to pass (where the pair holds the contact
+          // and the upper bound is still the first witness's, the enumeration
+          // followed). Measured on the motion probe, M instructions for 600
+          // queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6: 107.4 / 89.8 /
+          // 224.6 / 168.0 -> 107.2 / 89.8 / 218.1 / 153.1; on 3000 queries
+          // at tol 1e-6 the p90 88.8 -> 75.7 us and the planned overlaps'
+          // p99 273 -> 169.
+          // (Only for patches apart at the fits' precision: no gain.)
+          if (!proven && !std::isfinite(closer.x())) closer = seen;
           const Patch& S = *boxed;
           const Patch& O = *other;
           const bool s_is_p = boxed == &P;

@@ -506,6 +506,55 @@ TEST_P(PatchVsBrute, LocalProofNeverAboveTheTruth) {
   EXPECT_GT(proven_below, separated);
 }
 
+// A local proof that runs out of boxes without meeting a point closer than
+// the cut hands back the nearest box centre it saw (`seen`, the query's start
+// for a descent): P's parameters, u in [0, 1], at a point no closer to Q than
+// the cut (a closer one ends the proof as `closer`), and nearer Q than the
+// cut plus the patches' extent; a descent from there never ends above it. A
+// proof that passes, or meets a closer point, leaves `seen` infinite.
+TEST_P(PatchVsBrute, BudgetFailureHandsBackTheNearestCentreSeen) {
+  const Kind k = GetParam();
+  std::mt19937_64 g = kind_rng(k, 37);
+  int budget_failures = 0, reached = 0, missed = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch &A = t.p.A, &B = t.p.B;
+    if (!t.r.separated) continue;
+    const double truth = t.r.upper, margin = 256 * kEps * t.coord;
+    double last_at = INFINITY;
+    for (int budget : {4, 16, 4096}) {
+      double lower = 0;
+      int evals = 0;
+      Vec2 closer(INFINITY, 0), seen(0, 0);
+      const bool ok = patches_at_least(A, B, 0.999 * truth, margin, budget, &lower, &evals, &closer, &seen);
+      if (ok || std::isfinite(closer.x())) {
+        EXPECT_FALSE(std::isfinite(seen.x())) << "trial " << trial;
+        continue;
+      }
+      ++budget_failures;
+      ASSERT_TRUE(std::isfinite(seen.x())) << "trial " << trial << " budget " << budget;
+      EXPECT_GE(seen.x(), 0.0);
+      EXPECT_LE(seen.x(), 1.0);
+      Vec3 y;
+      const double at = patch_nearest(B, patch_point(A, seen.x(), seen.y()), &y);
+      EXPECT_GE(at, 0.999 * truth - 64 * kEps * t.coord) << "trial " << trial;
+      Vec3 xd, yd;
+      const double d = patch_pair_descent(A, B, seen, 1e-12, &xd, &yd);
+      EXPECT_LE(d, at + 64 * kEps * t.coord) << "trial " << trial;
+      // The nearest centre seen is a start near the pair's minimum: from
+      // it, the descent reaches the truth.
+      ++(d <= truth * (1 + 1e-9) + 64 * kEps * t.coord ? reached : missed);
+      // ...and, seen after more boxes, it is no farther from Q.
+      if (budget > 4) EXPECT_LE(at, last_at + 64 * kEps * t.coord) << "trial " << trial << " budget " << budget;
+      last_at = at;
+    }
+  }
+  std::printf("%s: %d proofs ran out of boxes; the descent from the centre seen reached the minimum on %d, missed %d\n",
+              k.name, budget_failures, reached, missed);
+  EXPECT_GT(budget_failures, 0);
+  EXPECT_GE(reached, 19 * missed);
+}
+
 // The descent the query uses before a second local proof (patch_pair_descent,
 // from a coarse grid point of A nearest to B): its pair is genuine (x on A, y
 // on B, their distance what patch_nearest says), never below the truth, never
