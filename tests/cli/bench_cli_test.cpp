@@ -59,6 +59,12 @@ TEST(BenchCli, PaperSmokeWritesRecordsAndReport) {
       // The warm-started sequence of the same frames is timed too.
       EXPECT_GT(x["coherent_median_us"].get<double>(), 0) << x;
       EXPECT_GE(x["coherent_p90_us"].get<double>(), x["coherent_median_us"].get<double>()) << x;
+      // The p99 on the frames revdist proved overlapping: a time where there are such frames.
+      ASSERT_TRUE(x.contains("proven_overlap_p99_us")) << x;
+      if (x["overlaps"].get<int>() > 0)
+        EXPECT_GT(x["proven_overlap_p99_us"].get<double>(), 0) << x;
+      else
+        EXPECT_TRUE(x["proven_overlap_p99_us"].is_null()) << x;
     } else if (e == "build") {
       builds.insert(x["pair"].get<std::string>());
       EXPECT_GT(x["nodes"].get<long>(), 0);
