@@ -544,7 +544,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   const double rel = std::max(opt.rel_tol, 0.0);
   double tol = opt.tol;  // (relaxed below when doubles cannot resolve it)
   // Stop when lower >= ub - tol or lower >= ub / (1 + rel_tol): either tolerance met.
-  auto cut = [&] { return rel > 0 ? std::min(ub - tol, ub / (1.0 + rel)) : ub - tol; };
+  // (Kept in cut_v, set again wherever ub or tol changes: it is read at every
+  // pair. A stale value could only be above the true cut, which prunes less.)
+  double cut_v;
+  auto set_cut = [&] { cut_v = rel > 0 ? std::min(ub - tol, ub / (1.0 + rel)) : ub - tol; };
+  set_cut();
+  auto cut = [&] { return cut_v; };
   const bool threshold = std::isfinite(opt.threshold);
   // Upper bounds are rounded outward: the rounded norm of two rounded witness
   // points, each a few ulps of the coordinates from the true surface point it
@@ -554,6 +559,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const double d = (x - y).norm() + up_round;
     if (d < ub) {
       ub = d;
+      set_cut();
       res.point_a = x;
       res.point_b = y;
     }
@@ -571,6 +577,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     }
     if (x_in && y_in) {
       ub = (x - y).norm() + up_round + 2 * round;
+      set_cut();
       res.point_a = x;
       res.point_b = y;
     }
@@ -848,7 +855,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // and the reason below says why it was not met. (Queries that can reach
     // their tol do so long before: the far_from_origin stress families at
     // eps 1e-7, seeds 70-72 and 76, converge as before.)
-    if (st.leaf_pairs >= 500 && tol < 2 * (round + up_round)) tol = 2 * (round + up_round);
+    if (st.leaf_pairs >= 500 && tol < 2 * (round + up_round)) tol = 2 * (round + up_round), set_cut();
     const bool out_of_kernels = st.patch_pairs >= opt.max_patch_pairs;
     const bool out_of_leaves = st.leaf_pairs >= opt.max_leaf_pairs;
     if (++st.node_pairs > opt.max_node_pairs || out_of_kernels || out_of_leaves) {
