@@ -99,7 +99,8 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 // seen: when the proof fails otherwise (the budget runs out, or boxes too
 // small to clear), the parameters of the box centre nearest Q so far; the
 // start for a descent that may find the pair's minimum (and so a better
-// upper bound, at which the proof can pass).
+// upper bound, at which the proof can pass). Infinite when the proof passes
+// or meets a closer point.
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
                       int* evals = nullptr, Vec2* closer = nullptr, Vec2* seen = nullptr);
 
