@@ -1029,11 +1029,12 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   constexpr int kOpen = 64;  // depth first: the stack holds the sectors and one path
   Box open[kOpen];
   int n = 0, evals = 0;
-  double nearest = std::numeric_limits<double>::infinity();  // the least centre distance so far (seen)
-  Vec2 nearest_at(std::numeric_limits<double>::infinity(), 0.0);
+  const Vec2 none(kInf, 0.0);  // no point (seen, when the proof passes or meets a closer one)
+  double nearest = kInf;       // the least centre distance so far (seen)
+  Vec2 nearest_at = none;
   auto done = [&](bool ok) {
     if (evals_out) *evals_out = evals;
-    if (seen) *seen = ok ? Vec2(std::numeric_limits<double>::infinity(), 0.0) : nearest_at;
+    if (seen) *seen = ok ? none : nearest_at;
     return ok;
   };
   const double sweep = P.straight ? 0.0 : P.sweep;
@@ -1171,7 +1172,7 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
     }
     if (truth < cut) {  // a point of P is closer: not provable
       if (closer) *closer = Vec2(b.um, b.tm);
-      nearest_at = Vec2(std::numeric_limits<double>::infinity(), 0.0);  // `closer` is the start, not `seen`
+      nearest_at = none;  // `closer` is the start, not `seen`
       return done(false);
     }
     if (truth < nearest) nearest = truth, nearest_at = Vec2(b.um, b.tm);
