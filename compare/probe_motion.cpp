@@ -6,13 +6,14 @@
 // / `--check F` write and compare the brackets (they must intersect) between
 // builds.
 // Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
-//                             [--save FILE] [--check FILE] [--repeat K]
+//                             [--save FILE] [--check FILE] [--times FILE] [--repeat K]
 //                             [--select LO,HI] [--only-overlap] [--index K] [--coherent] [--perfect-warm] [--worst K]
 // --worst K lists the K slowest queries (frame, pair, target distance, time,
 // bracket and work counters): where the tail comes from.
-// --only-overlap restricts --select to the queries answered with a proven
-// overlap (bracket [0, 0]); --index K to query K alone (the frame number
-// --worst prints).
+// --only-overlap restricts --select and --worst to the queries answered with
+// a proven overlap (bracket [0, 0]); --index K to query K alone (the frame
+// number --worst prints). --times FILE writes each query's time (us), one a
+// line in frame order, to compare two builds query by query.
 // --repeat K times each query K times and keeps its least time.
 // --perfect-warm starts each query from its own answer (a cold query's, as
 // a WarmStart): what a witness exact from the start would save.
@@ -67,7 +68,7 @@ int main(int argc, char** argv) {
   bool coherent = false, only_overlap = false, perfect = false;
   long only_index = -1;
   double sel_lo = -1, sel_hi = -1;
-  std::string poses_file, save, check;
+  std::string poses_file, save, check, times;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : "";
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
     else if (a == "--frames") frames = atoi(v), ++i;
     else if (a == "--poses") poses_file = v, ++i;
     else if (a == "--save") save = v, ++i;
+    else if (a == "--times") times = v, ++i;
     else if (a == "--check") check = v, ++i;
     else if (a == "--repeat") repeat = atoi(v), ++i;
     else if (a == "--coherent") coherent = true;
@@ -175,8 +177,11 @@ int main(int argc, char** argv) {
       sum.spine_pairs += r.stats.spine_pairs, sum.spine_evals += r.stats.spine_evals;
       sum.hull_pairs += r.stats.hull_pairs, sum.hull_parts += r.stats.hull_parts;
     }
-  for (std::size_t k = 0; k < us.size(); ++k)
+  std::vector<double> proven_us;  // the queries answered with a proven overlap
+  for (std::size_t k = 0; k < us.size(); ++k) {
     if (poses[k].target < 0) over_us.push_back(us[k]);
+    if (got[k].upper <= 0) proven_us.push_back(us[k]);
+  }
   DistanceStats sel;
   if (sel_lo >= 0) {
     std::vector<std::size_t> order;
@@ -209,6 +214,8 @@ int main(int argc, char** argv) {
            for (double u : us) s += u;
            return s / n;
          }(), over_us.size(), nearest_rank_percentile(over_us, 0.5), nearest_rank_percentile(over_us, 0.99));
+  printf("proven overlaps %zu: median %.1f us p90 %.1f p99 %.1f\n", proven_us.size(), nearest_rank_percentile(proven_us, 0.5),
+         nearest_rank_percentile(proven_us, 0.9), nearest_rank_percentile(proven_us, 0.99));
   printf("per query: popped pairs retired by their capsules' hulls %.1f\n", sum.hull_parts / n);
   printf("per query: node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f hull %.1f spine %.1f (points %.1f) local %.1f (boxes %.1f) refined %.1f; overlaps %d unconverged %d\n",
          sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
@@ -217,6 +224,8 @@ int main(int argc, char** argv) {
   if (worst > 0) {
     std::vector<std::size_t> order(us.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    if (only_overlap)  // --worst among the proven overlaps
+      order.erase(std::remove_if(order.begin(), order.end(), [&](std::size_t i) { return got[i].upper > 0; }), order.end());
     std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return us[x] > us[y]; });
     for (std::size_t k = 0; k < std::min<std::size_t>(worst, order.size()); ++k) {
       const std::size_t i = order[k];
@@ -229,6 +238,11 @@ int main(int argc, char** argv) {
              (long)s.local_boxes, (long)s.spine_pairs, (long)s.hull_pairs, (long)s.refined, r.reason.c_str());
     }
   }
+  if (!times.empty())
+    if (FILE* f = fopen(times.c_str(), "w")) {
+      for (double u : us) fprintf(f, "%.3f\n", u);
+      fclose(f);
+    }
   if (!save.empty())
     if (FILE* f = fopen(save.c_str(), "wb")) {
       fwrite(got.data(), sizeof(Bracket), got.size(), f);
