@@ -205,7 +205,7 @@ struct Solid {
   // fit's span, mapped back to the world at x's azimuth: a genuine surface point.
   Vec3 true_point(const BiarcFit& f, const Vec3& x) const {
     const Vec3 d = s.R.transpose() * (x - s.t);
-    const double rho = std::hypot(d.x(), d.y());
+    const double rho = std::sqrt(d.x() * d.x() + d.y() * d.y());  // (coordinates within 1e100: no overflow)
     const Vec2 q(rho, d.z());
     const Piece& piece = s.profile->pieces[f.piece];
     // Newton from the projection onto the fit's chord (the fit's ends, within
@@ -248,7 +248,7 @@ struct Solid {
   template <class Take>
   bool along_meridian(const BiarcFit& f, const Vec3& x, int steps, Take take) const {
     const Vec3 d = s.R.transpose() * (x - s.t);
-    const double rho = std::hypot(d.x(), d.y());
+    const double rho = std::sqrt(d.x() * d.x() + d.y() * d.y());  // (coordinates within 1e100: no overflow)
     const Vec3 er = rho > 0 ? Vec3(d.x() / rho, d.y() / rho, 0) : Vec3::UnitX();
     const Piece& piece = s.profile->pieces[f.piece];
     const auto [lo, hi] = piece_domain(piece);
@@ -269,13 +269,19 @@ struct Solid {
   // World point x in this solid's meridian half-plane: (distance to the axis, height).
   Vec2 meridian(const Vec3& x) const {
     const Vec3 d = s.R.transpose() * (x - s.t);
-    return Vec2(std::hypot(d.x(), d.y()), d.z());
+    return Vec2(std::sqrt(d.x() * d.x() + d.y() * d.y()), d.z());
   }
 
   // The fit near world point x: a greedy descent of the disks towards x's
-  // meridian point.
+  // meridian point, or the leaf it found last when x's meridian point is in
+  // that leaf's disk (the witness's rounds mostly stay on one fit: motion
+  // probe, M instructions for 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol
+  // 1e-6, 100.4 / 81.3 / 198.8 / 148.0 -> 99.9 / 80.8 / 198.7 / 147.6;
+  // first witnesses within tol of the answer 1764 -> 1758 of 2811).
+  std::int32_t last_leaf = -1;
   BiarcFit nearest_fit(const Vec3& x) {
     const Vec2 q = meridian(x);
+    if (last_leaf >= 0 && (q - parts[last_leaf].disk_c).norm() <= parts[last_leaf].disk_r) return fit(parts[last_leaf]);
     std::int32_t i = 0;
     long refined = 0;  // tree nodes only: parts with a fit end the descent
     while (!parts[i].has_fit) {
@@ -283,6 +289,7 @@ struct Solid {
       const Part &c0 = parts[c], &c1 = parts[c + 1];
       i = (q - c0.disk_c).norm() - c0.disk_r <= (q - c1.disk_c).norm() - c1.disk_r ? c : c + 1;
     }
+    last_leaf = i;
     return fit(parts[i]);
   }
 
@@ -741,7 +748,11 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (ub <= fx.eps + fy.eps + opt.tol && probe_witness(fx, fy)) return proven_overlap(shared);
   }
 
-  std::priority_queue<Entry> heap;
+  std::priority_queue<Entry> heap = [] {
+    std::vector<Entry> v;
+    v.reserve(256);
+    return std::priority_queue<Entry>(std::less<Entry>(), std::move(v));
+  }();
   // The hull bounds along the witness's direction (res.point_a - res.point_b),
   // prepared once for each witness: most pops of a query see the same one.
   RevolvedHullDirection witness_dir(pa.t, A.axis, pb.t, B.axis, Vec3::Zero());
