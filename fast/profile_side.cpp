@@ -97,7 +97,9 @@ Side profile_side(BiarcTreeView& tree, const Vec2& q, double margin) {
   const BiarcNode& root = tree.node(0);
   const double size = std::max(root.seg_a.norm(), root.seg_b.norm()) + (std::isfinite(root.radius) ? root.radius : 0.0);
   const double tol = 1e-12 * std::max(size, q.norm()) + 1e-300;
-  std::vector<std::int32_t> stack;
+  // (The thread's stack, kept from call to call: the query tests a few
+  // points each, and an allocation a call cost more than a short descent.)
+  thread_local std::vector<std::int32_t> stack;
   for (int attempt = 0; attempt < 16; ++attempt) {
     // Directions spread over (-60, 60) degrees around +r, irrational steps.
     const double angle = (attempt == 0 ? 0.1234567 : std::fmod(0.1234567 + attempt * 0.7390851, 2.0) - 1.0) * 1.0471975;

@@ -28,7 +28,6 @@
 #include <cstring>
 #include <deque>
 #include <limits>
-#include <queue>
 #include <string>
 #include <vector>
 
@@ -81,16 +80,18 @@ struct Part {
 struct Solid {
   const PosedSolid& s;
   BiarcTreeView tree;  // s.tree; a lazy tree's nodes are built here when first split
-  std::vector<Part> parts;
-  std::deque<BiarcFit> refined_fits;  // the refinements' fits (a deque: references stay valid)
+  // (Both in the thread's QueryStorage, emptied here: their storage is kept.)
+  std::vector<Part>& parts;
+  std::deque<BiarcFit>& refined_fits;  // the refinements' fits (a deque: references stay valid)
   Vec3 axis;
   double slack;  // rounding allowance of refitted bounds: the tree builder's
   CircleNormalFrame frame;  // the plane frame of every part's circle (all about the axis)
 
-  explicit Solid(const PosedSolid& ps)
-      : s(ps), tree(*ps.tree, *ps.profile), axis(ps.R.col(2).normalized()), slack(ps.tree->slack),
-        frame(circle_normal_frame(axis)) {
-    parts.reserve(256);
+  Solid(const PosedSolid& ps, std::vector<Part>& part_storage, std::deque<BiarcFit>& fit_storage)
+      : s(ps), tree(*ps.tree, *ps.profile), parts(part_storage), refined_fits(fit_storage),
+        axis(ps.R.col(2).normalized()), slack(ps.tree->slack), frame(circle_normal_frame(axis)) {
+    parts.clear();
+    refined_fits.clear();
     parts.push_back(from_node(0, 0));
     place(parts.back());
   }
@@ -446,6 +447,12 @@ class NeighbourTable {
     s = static_cast<std::uint32_t>(entries_.size());
     if (4 * entries_.size() > 3 * slots_.size()) grow();
   }
+  // Empty again (a table grown by a long query shrinks back).
+  void clear() {
+    if (slots_.size() > 256) slots_.assign(256, 0);
+    else std::fill(slots_.begin(), slots_.end(), 0);
+    entries_.clear();
+  }
   // The index stored for k, or nullptr.
   const std::size_t* find(const NeighbourKey& k) const {
     const std::uint32_t s = slots_[index(k)];
@@ -484,6 +491,56 @@ struct Entry {
   bool operator<(const Entry& o) const { return lb > o.lb; }  // min-heap
 };
 static_assert(sizeof(Entry) == 16);
+
+// A min-heap of entries (the least lb on top) in a vector it does not own.
+class EntryHeap {
+ public:
+  explicit EntryHeap(std::vector<Entry>& v) : v_(v) { v_.clear(); }
+  bool empty() const { return v_.empty(); }
+  const Entry& top() const { return v_.front(); }
+  void push(const Entry& e) {
+    v_.push_back(e);
+    std::push_heap(v_.begin(), v_.end());
+  }
+  void pop() {
+    std::pop_heap(v_.begin(), v_.end());
+    v_.pop_back();
+  }
+
+ private:
+  std::vector<Entry>& v_;
+};
+
+// A lower bound on the distance between the fits of a pair compared (before
+// the eps are taken off), the fits by their parts of A and B.
+struct FitBound {
+  std::int32_t a, b;
+  double lb;
+};
+
+// A query's containers, one set per thread, kept from query to query: a
+// query then allocates nothing once the storage has grown (14 allocations a
+// query on the motion probe before). Storage that a long query grew past
+// kKeep elements is given back at the next one.
+struct QueryStorage {
+  std::vector<Part> parts[2];
+  std::deque<BiarcFit> fits[2];
+  std::vector<Entry> heap;
+  std::vector<FitBound> fit_bounds;
+  NeighbourTable neighbours;
+  static constexpr std::size_t kKeep = 1 << 14;
+  QueryStorage& ready() {
+    for (auto* v : {&parts[0], &parts[1]})
+      if (v->capacity() > kKeep) std::vector<Part>().swap(*v);
+    if (heap.capacity() > kKeep) std::vector<Entry>().swap(heap);
+    if (fit_bounds.capacity() > kKeep) std::vector<FitBound>().swap(fit_bounds);
+    for (auto* f : {&fits[0], &fits[1]})
+      if (f->size() > kKeep) std::deque<BiarcFit>().swap(*f);
+    fit_bounds.clear();
+    neighbours.clear();
+    return *this;
+  }
+};
 
 // The cheap lower bound between two parts, in closed form (no iteration):
 // their bounding tori (disks rotated) are at least the closed-form circle
@@ -545,7 +602,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     res.reason = "empty profile";
     return res;
   }
-  Solid A(pa), B(pb);
+  thread_local QueryStorage storage;
+  QueryStorage& mem = storage.ready();
+  Solid A(pa, mem.parts[0], mem.fits[0]), B(pb, mem.parts[1], mem.fits[1]);
   DistanceStats& st = res.stats;
   // Rounding of world coordinates: a few ulps of the largest one involved.
   const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(),
@@ -748,11 +807,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (ub <= fx.eps + fy.eps + opt.tol && probe_witness(fx, fy)) return proven_overlap(shared);
   }
 
-  std::priority_queue<Entry> heap = [] {
-    std::vector<Entry> v;
-    v.reserve(256);
-    return std::priority_queue<Entry>(std::less<Entry>(), std::move(v));
-  }();
+  EntryHeap heap(mem.heap);
   // The hull bounds along the witness's direction (res.point_a - res.point_b),
   // prepared once for each witness: most pops of a query see the same one.
   RevolvedHullDirection witness_dir(pa.t, A.axis, pb.t, B.axis, Vec3::Zero());
@@ -768,17 +823,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // in a lazy tree as in an eager one): a fit's end circle is part of the fit
   // of the adjacent span too, so a neighbour pair's bound also bounds that
   // circle's sub-problems against the same other fit.
-  struct FitBound {
-    std::int32_t a, b;  // parts of A and B (their fits)
-    double lb;
-  };
-  std::vector<FitBound> fit_bounds;
+  std::vector<FitBound>& fit_bounds = mem.fit_bounds;
   auto start = [](const BiarcFit& f) { return f.arc[0].start; };
   auto end = [](const BiarcFit& f) { return f.arc[f.arcs - 1].end(); };
   // The first pair compared for each (side, end, other fit, neighbour's
   // piece and end parameter): a lookup per leaf pair instead of a scan of all
   // earlier ones (which made long queries quadratic in their leaf pairs).
-  NeighbourTable neighbours;
+  NeighbourTable& neighbours = mem.neighbours;
   bool tried_witness = false;  // the witness's overlap probe (once a query)
   auto witness_probe = [&](const BiarcFit& fa, const BiarcFit& fb) {
     tried_witness = true;
