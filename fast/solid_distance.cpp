@@ -616,41 +616,13 @@ double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb
   return circle3_circle3_distance_value(A.disk_circle(pa), A.frame, B.disk_circle(pb), B.frame) - pa.disk_r - pb.disk_r;
 }
 
-// Where a cold query's first witness starts: a greedy dive down both trees,
-// splitting as the traversal does (the parts are shared with it), into the
-// child pair whose centre circles are closest (the closed-form bound plus
-// both disk radii), down to a pair of leaves; a point of B's leaf's centre
-// circle near A's. Nothing proven rests on it: it only places the witness's
-// rounds. The closed-form bound alone (the least lower bound) favours the
-// widest disks and lands farther from the contact. Measured on the motion
-// probe's 3000 queries at eps 1e-5, first witnesses within tol of the
-// answer: 1271 from the root circles, 1305 by the bound alone, 1764 this
-// way (a beam of 2 or 3 pairs a level: 1820, 1873, for more work than it
-// saves; a best-first search to the first leaf pair: 1953, for 17 % more
-// work at eps 1e-5).
-Vec3 dive_start(Solid& A, Solid& B, const CircleBoundAxes& axes) {
-  std::int32_t ia = 0, ib = 0;
-  long refined = 0;  // (tree nodes only: the dive stops at parts with a fit)
-  while (!(A.parts[ia].has_fit && B.parts[ib].has_fit)) {
-    const Part &qa = A.parts[ia], &qb = B.parts[ib];
-    const bool both = !qa.has_fit && !qb.has_fit && std::min(qa.disk_r, qb.disk_r) >= 0.5 * std::max(qa.disk_r, qb.disk_r);
-    const bool split_a = both || (!qa.has_fit && (qb.has_fit || qa.disk_r >= qb.disk_r));
-    const bool split_b = both || !split_a;
-    const std::int32_t ca = split_a ? A.split(ia, &refined) : ia, cb = split_b ? B.split(ib, &refined) : ib;
-    double best = kInf;
-    for (std::int32_t i = ca; i < ca + (split_a ? 2 : 1); ++i)
-      for (std::int32_t j = cb; j < cb + (split_b ? 2 : 1); ++j) {
-        const Part &pa = A.parts[i], &pb = B.parts[j];
-        if (const double k = cheap_bound(axes, pa, pb) + pa.disk_r + pb.disk_r; k < best) best = k, ia = i, ib = j;
-      }
-  }
-  // Two rounds of alternating projection between the two centre circles, in
-  // closed form, from B's point nearest A's centre: a start, not the circles'
-  // closest pair (their solve cost 2.3 % of the median query; probe M for
-  // 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6, 96.7 / 76.8 / 195.2 /
-  // 144.3 with it, 93.9 / 75.4 / 193.8 / 142.2 so; one or four rounds
-  // 95.4 and 95.6 at eps 1e-5).
-  const Circle3 ca = A.disk_circle(A.parts[ia]), cb = B.disk_circle(B.parts[ib]);
+// Where a cold query's first witness starts, on leaf parts a of A and b of
+// B: two rounds of alternating projection between their centre circles, in
+// closed form, from B's point nearest A's centre (a start, not the circles'
+// closest pair: their solve cost 2.3 % of the median query; one or four
+// rounds did worse).
+Vec3 leaf_start(const Solid& A, const Part& a, const Solid& B, const Part& b) {
+  const Circle3 ca = A.disk_circle(a), cb = B.disk_circle(b);
   auto onto = [](const Circle3& c, const Vec3& x) {  // c's point nearest x (its centre when x is on its axis)
     const Vec3 v = x - c.center;
     const Vec3 w = v - v.dot(c.normal) * c.normal;
@@ -764,29 +736,34 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (containment_unknown && B.interior_point(&p) && in_a(p)) return proven_overlap(shared);
   }
 
-  // A witness pair before the traversal: a few rounds of alternating
-  // projection onto the surfaces, from the warm start's pair when it gave
-  // one (the previous frame's contact is near this one's: on the motion
-  // probe's sequences, 158.8 -> 146.5 M instructions at eps 1e-5, 6-9 % less
-  // at 1e-3, 1e-7 and tol 1e-6, than from the root circles; proven overlaps
-  // 37 against the cold queries' 38 at 1e-3, where one bracket [0, u <= tol]
-  // goes without the proof, and 197 against 196 on 3000 queries at 1e-5),
-  // else from the leaf pair of a greedy dive (dive_start: on the motion
-  // probe, M instructions for 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol
-  // 1e-6, 106.3 / 88.7 / 215.0 / 151.8 from the root disks' circles, 100.7
-  // / 81.6 / 199.3 / 148.3 from the dive; the 189 proven overlaps of 3000
-  // queries 30.7 -> 31.4). A threshold query
-  // answered "closer" needs only one pair below the threshold, and the
-  // best-first loop below, which would first tighten every
-  // bound under the threshold, then stops at once; any other query starts
-  // with an upper bound near the distance, so the local proofs of the first
+  // The first witness pair: a few rounds of alternating projection onto the
+  // surfaces, from `start`. True when it proves an overlap (the point in
+  // `shared`). A warm start's pair starts it before the traversal (the
+  // previous frame's contact is near this one's: on the motion probe's
+  // sequences, 158.8 -> 146.5 M instructions at eps 1e-5, 6-9 % less at
+  // 1e-3, 1e-7 and tol 1e-6, than from the root circles; proven overlaps 37
+  // against the cold queries' 38 at 1e-3, where one bracket [0, u <= tol]
+  // goes without the proof, and 197 against 196 on 3000 queries at 1e-5).
+  // A cold query's starts at the first leaf pair the traversal takes (the
+  // loop below: in the centre order, the leaves nearest the contact; those
+  // pops are the traversal's own), from leaf_start. Measured on the motion
+  // probe's 3000 queries at eps 1e-5: first witnesses within tol of the
+  // answer 1271 of 2811 from the root disks' circles, the rest a median 0.5
+  // away (another contact), 1764 from a greedy dive by the centre key; from
+  // the first leaf pair, against that dive, M instructions for 600 queries at
+  // eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6 96.8 / 76.9 / 198.6 / 145.5 -> 93.3 /
+  // 75.5 / 194.8 / 141.1, median / p90 us 12.65 / 39.9 -> 12.2 / 37.0. A
+  // threshold query answered "closer" needs only one pair below the
+  // threshold, and the best-first loop below, which would first tighten
+  // every bound under the threshold, then stops at once; any other query
+  // has an upper bound near the distance, so the local proofs of the first
   // leaf pairs can pass (measured: 5 % fewer instructions on the motion probe).
   // The rounds project onto the fits' patches; only the last pair is mapped
   // to the input curves (true_point, ten times a patch projection's cost).
-  {
-    Vec3 y = ub < kInf ? res.point_b  // (only the warm start sets ub before this)
-                       : dive_start(A, B, axes);
-    Vec3 x = y;
+  bool have_witness = false;
+  auto first_witness = [&](const Vec3& start) {
+    have_witness = true;
+    Vec3 y = start, x = y;
     BiarcFit fx, fy;
     Patch px, py;  // the patches the pair is on
     // Between nearly parallel sides each round moves the pair only a little
@@ -871,8 +848,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // 31.9 on the overlaps, but 93.9 and 98.0 for the 600 at eps 1e-3, where
     // it takes in most near contacts; the points alone, without the
     // meridians: 38.8 on the overlaps.)
-    if (ub <= fx.eps + fy.eps + opt.tol && probe_witness(fx, fy)) return proven_overlap(shared);
-  }
+    return ub <= fx.eps + fy.eps + opt.tol && probe_witness(fx, fy);
+  };
+  if (ub < kInf && first_witness(res.point_b)) return proven_overlap(shared);  // (only a warm start sets ub here)
 
   // (The centre order, against the bound order for all pairs: on the motion
   // probe's 3000 queries, least of 3 runs, median / p90 / mean us at eps 1e-5
@@ -979,6 +957,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (heap.centre_order() && cut() <= 0)
       heap.by_bound_only([&](std::int32_t a, std::int32_t b) { return cheap_bound(axes, A.parts[a], B.parts[b]) - round; });
     const Entry e = heap.top();
+    // A cold query's first witness, at the first leaf pair (the pair is
+    // taken again with the upper bound it gives).
+    if (!have_witness && A.parts[e.a].has_fit && B.parts[e.b].has_fit) {
+      if (first_witness(leaf_start(A, A.parts[e.a], B, B.parts[e.b]))) return proven_overlap(shared);
+      continue;
+    }
     if (e.lb >= cut()) break;  // every remaining pair is at least e.lb away
     if (threshold && (ub <= opt.threshold || std::min(e.lb, settled_lb) > opt.threshold)) {
       res.decided = true;
@@ -1000,7 +984,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // cut have often moved since (leaf pairs 7.5 -> 5.5 a query; M
     // instructions at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6: 122.3 / 97.4 / 261.5
     // / 181.9 -> 119.5 / 96.6 / 247.9 / 179.1).
-    {
+    if (have_witness) {  // (its direction)
       const Part &ha = A.parts[e.a], &hb = B.parts[e.b];
       const double lb = witness_hull()(ha.seg_a, ha.seg_b, hb.seg_a, hb.seg_b) - ha.cap_r - hb.cap_r - round;
       if (lb >= cut()) {
