@@ -19,6 +19,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -326,6 +327,41 @@ TEST(SolidDistanceBruteForce, RandomPosesOfPaperModels) {
     overlaps += r.overlap;
   }
   std::printf("[ stats    ] %d random poses: %d overlap, %d not converged\n", n, overlaps, not_converged);
+}
+
+// A query keeps its containers (parts, fits, heaps, tables) in its thread's
+// storage from one call to the next: no state may leak from one query into
+// another. The same queries in another order, after a query that grows the
+// storage (tol 1e-9), and on a new thread (fresh storage) give the same
+// results, bit for bit.
+TEST(SolidDistanceStorage, AQueryDoesNotDependOnTheQueriesBefore) {
+  std::mt19937_64 g(test_seed(7002, "AQueryDoesNotDependOnTheQueriesBefore"));
+  PaperModels P(kEps);
+  std::vector<std::pair<PosedSolid, PosedSolid>> poses;
+  for (int k = 0; k < 12; ++k) {
+    const std::size_t ia = g() % P.m.instances.size(), ib = g() % P.m.instances.size();
+    poses.push_back(random_pose_pair(P.m.instances[ia], P.m.instances[ib], g, 2.5));
+  }
+  auto run = [&](std::size_t k) { return solid_distance(poses[k].first, poses[k].second, DistanceOptions{kTol}); };
+  auto same = [](const SolidDistanceResult& a, const SolidDistanceResult& b) {
+    return a.lower == b.lower && a.upper == b.upper && a.point_a == b.point_a && a.point_b == b.point_b &&
+           a.overlap == b.overlap && a.converged == b.converged && a.stats.node_pairs == b.stats.node_pairs &&
+           a.stats.leaf_pairs == b.stats.leaf_pairs && a.stats.local_boxes == b.stats.local_boxes &&
+           a.stats.refined == b.stats.refined;
+  };
+  std::vector<SolidDistanceResult> first;
+  for (std::size_t k = 0; k < poses.size(); ++k) first.push_back(run(k));
+  // A long query: many parts, refinements and pairs left in the storage.
+  DistanceOptions fine{1e-9};
+  const SolidDistanceResult big = solid_distance(poses[0].first, poses[0].second, fine);
+  EXPECT_GT(big.stats.node_pairs, first[0].stats.node_pairs);
+  for (std::size_t k = poses.size(); k-- > 0;) EXPECT_TRUE(same(run(k), first[k])) << "query " << k << " after others";
+  std::vector<SolidDistanceResult> fresh(poses.size());
+  std::thread t([&] {
+    for (std::size_t k = 0; k < poses.size(); ++k) fresh[k] = run(k);
+  });
+  t.join();
+  for (std::size_t k = 0; k < poses.size(); ++k) EXPECT_TRUE(same(fresh[k], first[k])) << "query " << k << " on a new thread";
 }
 
 // ---------------------------------------------------------------------------
