@@ -516,9 +516,10 @@ class EntryHeap {
 // pairs' bounding tori meet) tells nothing of where the contact is, and
 // every such pair is taken before any other while the cut is above 0 (none
 // of them can be retired by its bound): those are taken closest centre
-// circles first (`centre`: the closed-form bound plus both disk radii,
-// dive_start's key), which reaches the leaf pairs at the contact first, and
-// between overlapping solids a crossing pair. Once the cut is at most 0 (an
+// circles first (`centre`: the closed-form bound plus both disk radii), which
+// reaches the leaf pairs at the contact first, and between overlapping solids
+// a crossing pair. A pair taken so reports -inf as its bound: the queue's stop
+// test (the least bound left reaches the cut) stays exact. Once the cut is at most 0 (an
 // upper bound within tol of touching) every pair is ordered by its bound
 // again (by_bound_only).
 class PairQueue {
