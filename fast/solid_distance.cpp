@@ -519,9 +519,9 @@ class EntryHeap {
 // circles first (`centre`: the closed-form bound plus both disk radii), which
 // reaches the leaf pairs at the contact first, and between overlapping solids
 // a crossing pair. A pair taken so reports -inf as its bound: the queue's stop
-// test (the least bound left reaches the cut) stays exact. Once the cut is at most 0 (an
-// upper bound within tol of touching) every pair is ordered by its bound
-// again (by_bound_only).
+// test (the least bound left reaches the cut) stays exact. Once the cut is at
+// most 0 (an upper bound within tol of touching) every pair is ordered by its
+// bound again (by_bound_only).
 class PairQueue {
  public:
   PairQueue(std::vector<Entry>& by_bound, std::vector<Entry>& by_centre) : bound_(by_bound), centre_(by_centre) {}
@@ -546,7 +546,7 @@ class PairQueue {
     return !centre_.empty() ? -std::numeric_limits<double>::infinity()
            : bound_.empty() ? std::numeric_limits<double>::infinity() : bound_.top().lb;
   }
-  // Every pair by its bound from now on; bound_of(a, b) gives the pairs' moved.
+  // Every pair by its bound from now on; bound_of(a, b) gives the bound of each pair moved.
   template <class Bound>
   void by_bound_only(Bound bound_of) {
     centre_order_ = false;
@@ -1186,29 +1186,57 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // mean us: eps 1e-5 31.0 / 16.8 -> 29.3 / 16.1, 1e-7 77.6 / 37.1 ->
         // 70.2 / 34.5, tol 1e-6 50.0 / 25.8 -> 41.5 / 21.9, 1e-3 26.6 / 13.2
         // -> 26.9 / 13.6; the proven overlaps' p99 at 1e-5 83.5 -> 76.0.
+        // A pair the arc pair's descent reached (x on P, y on Q, d apart):
+        // offered; then, at the cut it leaves (*cut2), the hulls along the
+        // pair's own closest direction, from Q's point y towards P's x
+        // (exact for cones side by side), and the spine bounds. (The hull was
+        // once taken reversed, y - x, whenever Q was the boxed patch, where
+        // it is at most 0 and retires nothing; the right way round the motion
+        // probe's 600 queries at eps 1e-5 took 156.0 -> 143.1 M instructions,
+        // 1e-7 354.4 -> 286.8, 1e-3 116.0 -> 113.8, tol 1e-6 208.6 -> 204.3.)
+        // proven: *bound (>= *cut2), from the spine bounds when *by_spine;
+        // above: the pair is above *cut2, unproven so far; open: the patches
+        // hold a pair at or below *cut2 but apart by more than the fits'
+        // errors: no bound on their distance, less those errors, can retire
+        // the leaf pair (its fit errors exceed what the bracket has left), so
+        // it will be refined (most pairs of a query whose tol is below its
+        // fits' errors end here); within: the pair is within the fits' errors
+        // (the patches may cross), or the cut is at most 0.
+        enum class Descended { proven, above, open, within };
+        auto descended = [&](double d, const Vec3& x, const Vec3& y, double* cut2, double* bound, bool* by_spine) {
+          if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
+          *cut2 = fits_cut();
+          if (cut() > 0 && d > *cut2) {
+            *by_spine = false;
+            if (const double hull = patch_hull_bound(P, Q, Vec3(x - y), 0); hull >= *cut2) {
+              *bound = hull;
+              return Descended::proven;
+            }
+            *by_spine = true;
+            return spine_proof(*cut2, bound) ? Descended::proven : Descended::above;
+          }
+          return cut() > 0 && d > fa.eps + fb.eps + round ? Descended::open : Descended::within;
+        };
         bool may_cross = false;  // skip the local proof
         if (disk <= 0 && cut() > 0) {
           Vec3 xs, ys;
           const double d = patch_pair_descent(P, Q, res.point_a, 1e-3 * opt.tol, &xs, &ys);
           if (xs.allFinite() && ys.allFinite()) {
-            if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, xs), B.true_point(fb, ys));
-            const double cut2 = fits_cut();
-            if (cut() > 0 && d > cut2) {
-              if (const double hull = patch_hull_bound(P, Q, Vec3(xs - ys), 0); hull >= cut2) {
-                ++st.hull_pairs;
-                settle(std::max(quick.lower, hull));
+            double cut2, bound = 0.0;
+            bool by_spine = false;
+            switch (descended(d, xs, ys, &cut2, &bound, &by_spine)) {
+              case Descended::proven:
+                ++(by_spine ? st.spine_pairs : st.hull_pairs);
+                settle(std::max(quick.lower, bound));
                 continue;
-              }
-              if (double spine = 0.0; spine_proof(cut2, &spine)) {
-                ++st.spine_pairs;
-                settle(std::max(quick.lower, spine));
+              case Descended::open:
+                leave_open(quick.lower);
                 continue;
-              }
-            } else if (cut() > 0 && d > fa.eps + fb.eps + round) {
-              leave_open(quick.lower);
-              continue;
-            } else {
-              may_cross = true;
+              case Descended::within:
+                may_cross = true;
+                break;
+              case Descended::above:
+                break;
             }
           }
         }
@@ -1281,35 +1309,19 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
             closer = Vec2(kInf, 0.0);
             const Vec3& x = s_is_p ? xs : xo;
             const Vec3& y = s_is_p ? xo : xs;
-            if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
-            const double cut2 = fits_cut();
-            if (cut() > 0 && d > cut2) {  // else the pair's own point is below the new cut: no proof
-              // The spine bounds at the new cut first: the pair's own
-              // minimum is near it, where the boxes cost the most.
-              // (And the hulls along the pair's own closest direction, from
-              // Q's point y towards P's x: exact for cones side by side. It
-              // was taken reversed, y - x, whenever Q was the boxed patch,
-              // where it is at most 0 and retires nothing; the right way
-              // round the motion probe's 600 queries at eps 1e-5 take 156.0 ->
-              // 143.1 M instructions, 1e-7 354.4 -> 286.8, 1e-3 116.0 ->
-              // 113.8, tol 1e-6 208.6 -> 204.3.)
-              if (const double hull = patch_hull_bound(P, Q, Vec3(x - y), 0); hull >= cut2) {
-                proven = true;
-                local = hull;
-              }
-              if (!proven) proven = by_spine = spine_proof(cut2, &local);
-              if (!proven) {
-                proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals, &closer);
-                st.local_boxes += evals;
-              }
-            } else if (cut() > 0 && d > fa.eps + fb.eps + round) {
-              // The patches hold a pair at d <= cut2: no bound on their
-              // distance, less the fit errors, can retire this leaf pair
-              // (its fit errors exceed what the bracket has left), so it will
-              // be refined, and the enumeration would only confirm that.
-              // Patches that may cross (d within the fit errors) still go on
-              // to it for its overlap probes. Most pairs of a query whose tol
-              // is below its fits' errors end here.
+            // The closed forms at the new cut first: the pair's own minimum
+            // is near it, where the boxes cost the most; then the boxes again.
+            // A pair left open would only be confirmed by the enumeration;
+            // patches that may cross (within) still go on to it for its
+            // overlap probes.
+            double cut2;
+            const Descended at = descended(d, x, y, &cut2, &local, &by_spine);
+            proven = at == Descended::proven;
+            if (at == Descended::above) {
+              by_spine = false;
+              proven = patches_at_least(S, O, cut2, round, kRetryBudget, &local, &evals, &closer);
+              st.local_boxes += evals;
+            } else if (at == Descended::open) {
               left_open_at = d;
               break;
             }
