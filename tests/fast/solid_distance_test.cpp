@@ -351,10 +351,18 @@ TEST(SolidDistanceStorage, AQueryDoesNotDependOnTheQueriesBefore) {
   };
   std::vector<SolidDistanceResult> first;
   for (std::size_t k = 0; k < poses.size(); ++k) first.push_back(run(k));
-  // A long query: many parts, refinements and pairs left in the storage.
+  // A long query in between: many parts, refinements and pairs left in the
+  // storage (more random poses at tol 1e-9 until one refines its fits: an
+  // overlap may be proven at once, and exact pieces need no refinement).
   DistanceOptions fine{1e-9};
-  const SolidDistanceResult big = solid_distance(poses[0].first, poses[0].second, fine);
-  EXPECT_GT(big.stats.node_pairs, first[0].stats.node_pairs);
+  SolidDistanceResult big;
+  for (int tries = 0; tries < 100 && big.stats.refined == 0; ++tries) {
+    const std::size_t ia = g() % P.m.instances.size(), ib = g() % P.m.instances.size();
+    const auto [X, Y] = random_pose_pair(P.m.instances[ia], P.m.instances[ib], g, 2.5);
+    big = solid_distance(X, Y, fine);
+  }
+  ASSERT_GT(big.stats.refined, 0) << describe(big);
+  ASSERT_GT(big.stats.node_pairs, 50) << describe(big);
   for (std::size_t k = poses.size(); k-- > 0;) EXPECT_TRUE(same(run(k), first[k])) << "query " << k << " after others";
   std::vector<SolidDistanceResult> fresh(poses.size());
   std::thread t([&] {
@@ -723,6 +731,30 @@ TEST(SolidDistanceOverlap, CrossingPatchesProvenByTheirDeepPoints) {
     const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
     EXPECT_TRUE(r.overlap) << f << ": " << describe(r);
     EXPECT_EQ(r.stats.patch_pairs, 0) << f << ": " << describe(r);
+  }
+}
+
+// Overlaps that only a step across the crossing proves (Solid::across), from
+// frames of the motion probe at eps 1e-5. A cup and a bottle: the first
+// witness lands on the crossing, within tol, and no point of the pair or of
+// its meridians is inside the other solid; the steps across prove the overlap
+// before any leaf pair (before them: 193 node pairs, then a leaf pair's deep
+// points). A bottle and a table: the first witness is at another contact
+// 0.115 away; the first leaf pair's descent ends near the crossing, and the
+// steps from there prove it (before them: 8 leaf pairs, 4 local proofs).
+TEST(SolidDistanceOverlap, StepsAcrossTheCrossingProveIt) {
+  {
+    Loaded L(source_path("cases/regressions/solid_overlap_across_witness_cup_bottle.json"), kEps);
+    const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
+    EXPECT_TRUE(r.overlap) << describe(r);
+    EXPECT_EQ(r.stats.leaf_pairs, 0) << describe(r);
+  }
+  {
+    Loaded L(source_path("cases/regressions/solid_overlap_across_descent_bottle_table.json"), kEps);
+    const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
+    EXPECT_TRUE(r.overlap) << describe(r);
+    EXPECT_LE(r.stats.leaf_pairs, 1) << describe(r);
+    EXPECT_EQ(r.stats.local_pairs + r.stats.patch_pairs, 0) << describe(r);
   }
 }
 
