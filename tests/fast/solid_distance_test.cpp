@@ -736,10 +736,10 @@ TEST(SolidDistanceOverlap, CrossingPatchesProvenByTheirDeepPoints) {
 
 // Overlaps that only a step across the crossing proves (Solid::across), from
 // frames of the motion probe at eps 1e-5. A cup and a bottle: the first
-// witness lands on the crossing, within tol, and no point of the pair or of
-// its meridians is inside the other solid; the steps across prove the overlap
-// before any leaf pair (before them: 193 node pairs, then a leaf pair's deep
-// points). A bottle and a table: the first witness is at another contact
+// witness lands near the crossing, and no point of the pair or of its
+// meridians is inside the other solid; the steps across prove the overlap
+// before any leaf pair (before them: 112 node pairs and 7 leaf pairs). A
+// bottle and a table: the first witness is at another contact
 // 0.115 away; the first leaf pair's descent ends near the crossing, and the
 // steps from there prove it (before them: 8 leaf pairs, 4 local proofs).
 TEST(SolidDistanceOverlap, StepsAcrossTheCrossingProveIt) {
