@@ -290,7 +290,8 @@ struct Solid {
   // (along_meridian) runs beside the crossing wherever the crossing runs
   // along the meridian; this step goes across it. Only steps that reach the
   // plane, to first order, are taken: towards it, and both ways from a p on
-  // it. Nothing when the surfaces are tangent at p (no direction across).
+  // it. Nothing where the surfaces meet at a sine of 1e-3 or less (no
+  // direction across).
   template <class Take>
   bool across(const CurvePoint& p, const CurvePoint& q, double len, int steps, Take take) const {
     const Vec3 n = s.R.transpose() * q.normal;
@@ -311,8 +312,9 @@ struct Solid {
     for (int k = 0; k < steps; ++k, l *= 0.25)
       for (double side : {-1.0, 1.0}) {
         // (A step of length l along side * (du, dt) moves side * l * sine off the plane.)
+        if (std::abs(s0) > l * sine) return false;  // (and every shorter step)
         const bool on_plane = std::abs(s0) <= 1e-3 * l * sine;
-        if (!on_plane && (std::abs(s0) > l * sine || (s0 > 0) == (side > 0))) continue;
+        if (!on_plane && (s0 > 0) == (side > 0)) continue;
         const double uk = std::clamp(p.u + side * l / rate * du, lo, hi), tk = p.th + side * l / rate * dt;
         const Vec2 c = piece_point(*p.piece, uk);
         const double cr = std::max(c.x(), 0.0);
@@ -927,7 +929,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         fx = nfx, fy = nfy, px = npx, py = npy, x = xs, y = ys2;
       }
     }
-    offer(A.true_point(fx, x), B.true_point(fy, y));
+    const Vec3 tx = A.true_point(fx, x), ty = B.true_point(fy, y);
+    offer(tx, ty);
     // Alternating projection between crossing surfaces converges to their
     // crossing: a first witness within its fits' errors and tol of each
     // other gets the overlap probe now, before any traversal, instead of
@@ -944,7 +947,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // chord gets the steps across (most pairs at a separated minimum have
     // parallel normals, and take no step).
     if (ub <= fx.eps + fy.eps + opt.tol) return probe_witness(fx, fy);
-    return probe_across(fx, res.point_a, fy, res.point_b, kAcrossReach);
+    return probe_across(fx, tx, fy, ty, kAcrossReach);
   };
   if (ub < kInf && first_witness(res.point_b)) return proven_overlap(shared);  // (only a warm start sets ub here)
 
@@ -1302,13 +1305,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // patches that cross ends near the crossing when the surfaces meet
         // at a small angle, or at a patch's end when the crossing is across
         // it; the local proof's boxes cannot pass there, and the probes after
-        // it start elsewhere. Measured with the first witness's steps,
-        // against neither, on the motion probe's 30000 queries, least of 3
-        // runs: the 1935 proven overlaps' median / p90 / p99 at eps 1e-5
-        // 11.6 / 29.7 / 72.9 -> 8.6 / 21.2 / 64.0 us, at 1e-7 25.9 / 82.3 /
-        // 296 -> 10.8 / 44.5 / 264; all queries' median / p90 / mean at 1e-5
-        // 9.6 / 29.0 / 16.0 -> 9.6 / 28.7 / 16.0, at 1e-7 13.2 / 70.6 / 34.7
-        // -> 12.1 / 67.4 / 33.8. M instructions for the probe's 600 queries
+        // it start elsewhere. Measured with these steps and the first
+        // witness's, against neither, on the motion probe's 30000 queries,
+        // least of 3 runs: the 1935 proven overlaps' median / p90 / p99 at
+        // eps 1e-5 11.6 / 29.7 / 72.9 -> 8.6 / 21.2 / 64.0 us, at 1e-7 25.9 /
+        // 82.3 / 296 -> 10.8 / 44.5 / 264; all queries' median / p90 / mean
+        // at 1e-5 9.6 / 29.0 / 16.0 -> 9.6 / 28.7 / 16.0, at 1e-7 13.2 / 70.6
+        // / 34.7 -> 12.1 / 67.4 / 33.8. M instructions for the probe's 600 queries
         // at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6 90.4 / 76.8 / 177.0 / 120.1
         // -> 92.8 / 79.1 / 178.4 / 123.4 (a step's point-in-solid test costs
         // about 2000), for its 200 overlap frames 25.3 / 18.4 / 66.6 / 36.9
