@@ -362,10 +362,20 @@ TEST(SolidDistanceExact, ConeAgainstRationalBellConverges) {
   EXPECT_LT(r.upper, 0.351);
 }
 
+// A sanitized build (scripts/sanitize.sh) runs exact/ 5-6 times slower: a
+// time budget scales by this (a regression case certified in 0.57 s in
+// Release took 3.6 s of its 2 s under AddressSanitizer).
+#ifdef REVDIST_SANITIZED
+constexpr double kBudgetScale = 8.0;
+#else
+constexpr double kBudgetScale = 1.0;
+#endif
+
 // Every query of the bundled distance cases and regressions: certified, to the
 // default width 1e-9 x scale, each within 2 s of CPU (the engine's target),
 // or within the file's "exact_time_budget_ms" where it records that the
-// engine misses its target there (a known slow case, kept in view).
+// engine misses its target there (a known slow case, kept in view); times
+// kBudgetScale in a sanitized build.
 TEST(SolidDistanceExact, BundledCasesCertifyQuickly) {
   for (const char* dir : {"cases/distance", "cases/regressions"}) {
     std::vector<std::string> files;
@@ -389,7 +399,7 @@ TEST(SolidDistanceExact, BundledCasesCertifyQuickly) {
         EXPECT_TRUE(r.certified) << r.reason;
         EXPECT_TRUE(r.width_reached) << r.reason;
         EXPECT_LE(r.upper - r.lower, 1e-9 * r.scale);
-        EXPECT_LT(r.time_ms, budget_ms);
+        EXPECT_LT(r.time_ms, kBudgetScale * budget_ms);
       }
     }
   }
