@@ -624,6 +624,12 @@ class PairQueue {
     if (e.lb <= 0 && centre_order_) centre_.push({centre, e.a, e.b, e.tight});
     else bound_.push(e);
   }
+  // Whether a pair of bound lb and centre key `centre`, pushed now, would be
+  // the next one taken.
+  bool would_be_next(double lb, double centre) const {
+    if (lb <= 0 && centre_order_) return centre_.empty() || centre <= centre_.top().lb;
+    return centre_.empty() && (bound_.empty() || lb <= bound_.top().lb);
+  }
   // The least bound of the pairs left (-inf while some are taken by their centre key).
   double least() const {
     return !centre_.empty() ? -std::numeric_limits<double>::infinity()
@@ -1099,7 +1105,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         settled_lb = std::min(settled_lb, lb);
         continue;
       }
-      if (!heap.empty() && lb > heap.top().lb) {
+      // Back into the queue with the tight bound, unless it would be taken
+      // next anyway. (A centre-ordered pair was always put back, its key
+      // compared with the -inf that the queue's top reports there: M
+      // instructions for the motion probe's 600 queries at eps 1e-5 / 1e-3 /
+      // 1e-7 / tol 1e-6 92.81 / 79.05 / 178.33 / 123.36 -> 92.56 / 78.81 /
+      // 177.96 / 123.01.)
+      if (!heap.would_be_next(lb, lb + A.parts[e.a].disk_r + B.parts[e.b].disk_r)) {
         heap.push({lb, e.a, e.b, true}, lb + A.parts[e.a].disk_r + B.parts[e.b].disk_r);
         continue;
       }
