@@ -1111,8 +1111,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       // instructions for the motion probe's 600 queries at eps 1e-5 / 1e-3 /
       // 1e-7 / tol 1e-6 92.81 / 79.05 / 178.33 / 123.36 -> 92.56 / 78.81 /
       // 177.96 / 123.01.)
-      if (!heap.would_be_next(lb, lb + A.parts[e.a].disk_r + B.parts[e.b].disk_r)) {
-        heap.push({lb, e.a, e.b, true}, lb + A.parts[e.a].disk_r + B.parts[e.b].disk_r);
+      const double centre = lb + A.parts[e.a].disk_r + B.parts[e.b].disk_r;
+      if (!heap.would_be_next(lb, centre)) {
+        heap.push({lb, e.a, e.b, true}, centre);
         continue;
       }
     }
@@ -1323,11 +1324,11 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // eps 1e-5 11.6 / 29.7 / 72.9 -> 8.6 / 21.2 / 64.0 us, at 1e-7 25.9 /
         // 82.3 / 296 -> 10.8 / 44.5 / 264; all queries' median / p90 / mean
         // at 1e-5 9.6 / 29.0 / 16.0 -> 9.6 / 28.7 / 16.0, at 1e-7 13.2 / 70.6
-        // / 34.7 -> 12.1 / 67.4 / 33.8. M instructions for the probe's 600 queries
-        // at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6 90.4 / 76.8 / 177.0 / 120.1
-        // -> 92.8 / 79.1 / 178.4 / 123.4 (a step's point-in-solid test costs
-        // about 2000), for its 200 overlap frames 25.3 / 18.4 / 66.6 / 36.9
-        // -> 19.7 / 16.7 / 41.9 / 24.6.)
+        // / 34.7 -> 12.1 / 67.4 / 33.8. M instructions for the probe's 600
+        // queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6 90.4 / 76.8 / 177.0 /
+        // 120.1 -> 92.8 / 79.1 / 178.4 / 123.4 (a step's point-in-solid test
+        // costs about 2000), for its 200 overlap frames 25.3 / 18.4 / 66.6 /
+        // 36.9 -> 19.7 / 16.7 / 41.9 / 24.6.)
         enum class Descended { proven, above, open, within, overlap };
         auto descended = [&](double d, const Vec3& x, const Vec3& y, double* cut2, double* bound, bool* by_spine) {
           if (d - fa.eps - fb.eps < ub) offer(A.true_point(fa, x), B.true_point(fb, y));
