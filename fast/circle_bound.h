@@ -15,7 +15,16 @@ namespace revdist {
 // circle b the height stays within |h0| -+ R_b sin(angle of the normals) and
 // rho within rho0 -+ R_b, which bounds both terms; the same with the roles
 // swapped, and the bounding spheres. Exact for coaxial circles; for two
-// circles in one plane it is the gap of their disks' rims. Rounding is the
+// circles in one plane it is the gap of their disks' rims. Where all of
+// these are 0 (circles about axes far from parallel, each reaching past the
+// other's plane and cylinder: the closest pairs of crossing surfaces), the
+// sphere about each circle's centre through that circle: every point of a
+// lies on it, so dist(a, b) >= the gap between that sphere and circle b,
+// whose points are between m and M from a's centre (m, M in closed form).
+// The distance of the other centre from an axis is the length of its
+// component across the axis, not sqrt(dd - h0^2): that difference loses all
+// digits for a centre near the axis (nearly coaxial circles 1e-9 off the
+// axis, 0.2 apart, got a bound 8e-10 above their distance). Rounding is the
 // caller's (a few ulps of the coordinates).
 double circle3_circle3_lower_bound(const Circle3& a, const Circle3& b);
 
@@ -32,7 +41,8 @@ double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec
 
 // The same bound for circles whose normals are two fixed unit vectors na, nb
 // (the parts of two posed solids, all about their solids' axes): the sine of
-// the normals' angle is computed once, a pair costs three square roots.
+// the normals' angle is computed once; a pair costs three square roots, and
+// four more where the planes and cylinders leave it at 0.
 class CircleBoundAxes {
  public:
   CircleBoundAxes(const Vec3& na, const Vec3& nb);
@@ -40,19 +50,36 @@ class CircleBoundAxes {
   // circle of centre cb, radius rb about nb.
   double operator()(const Vec3& ca, double ra, const Vec3& cb, double rb) const {
     const Vec3 d = cb - ca;
-    const double dd = d.squaredNorm();
-    return std::max({std::sqrt(dd) - ra - rb, seen_from(na_.dot(d), dd, ra, rb), seen_from(nb_.dot(d), dd, rb, ra)});
+    const Cylindrical b_on_a = cylindrical(na_, d), a_on_b = cylindrical(nb_, d);
+    const double v = std::max({d.norm() - ra - rb, seen_from(b_on_a, ra, rb), seen_from(a_on_b, rb, ra)});
+    if (v > 0) return v;
+    return std::max(sphere(a_on_b, ra, rb), sphere(b_on_a, rb, ra));
   }
 
  private:
-  // Seen from the axis of the circle of radius r (height h0 of the other's
-  // centre over its plane, dd the squared centre distance): the height gap
-  // and the radial gap of the other circle, of radius ro.
-  double seen_from(double h0, double dd, double r, double ro) const {
-    const double rho0 = std::sqrt(std::max(0.0, dd - h0 * h0));
-    const double dz = std::max(0.0, std::abs(h0) - ro * s_);
-    const double dr = std::max({0.0, rho0 - ro - r, r - rho0 - ro});
+  // A circle centre seen from the other circle's axis: its height over
+  // the other's plane (up to sign) and its distance from the axis.
+  struct Cylindrical {
+    double h, rho;
+  };
+  static Cylindrical cylindrical(const Vec3& n, const Vec3& d) {
+    const double h = n.dot(d);
+    return {h, (d - h * n).norm()};
+  }
+  // Seen from the axis of the circle of radius r (c: the other centre,
+  // of radius ro): the height gap and the radial gap of the other circle.
+  double seen_from(const Cylindrical& c, double r, double ro) const {
+    const double dz = std::max(0.0, std::abs(c.h) - ro * s_);
+    const double dr = std::max({0.0, c.rho - ro - r, r - c.rho - ro});
     return std::sqrt(dz * dz + dr * dr);
+  }
+  // The sphere about one circle's centre through that circle (radius r)
+  // against the other circle (radius ro; c: the sphere's centre seen from
+  // its axis).
+  static double sphere(const Cylindrical& c, double r, double ro) {
+    const double m = std::sqrt(c.h * c.h + (c.rho - ro) * (c.rho - ro));
+    const double M = std::sqrt(c.h * c.h + (c.rho + ro) * (c.rho + ro));
+    return std::max({0.0, m - r, r - M});
   }
   Vec3 na_, nb_;
   double s_;

@@ -198,6 +198,57 @@ TEST_P(CircleDistanceFamily, MatchesClosedFormOrReference) {
 INSTANTIATE_TEST_SUITE_P(Families, CircleDistanceFamily, ::testing::ValuesIn(families()),
                          [](const ::testing::TestParamInfo<Family>& info) { return info.param.name; });
 
+// circle3_circle3_lower_bound, the closed form in front of every node pair
+// and patch pair: never above the distance (to rounding of the coordinates)
+// on every family, with unit normals as the traversal has them.
+TEST(CircleLowerBound, NeverAboveTheDistance) {
+  Rng rng(test_seed() + 11);
+  int compared = 0;
+  for (const Family& fam : families())
+    for (int i = 0; i < 300; ++i) {
+      Case k = fam.make(rng, i);
+      k.a.normal.stableNormalize(), k.b.normal.stableNormalize();  // (some families scale them by 1e+-200)
+      const double ex = circle3_circle3_distance(k.a, k.b).distance;
+      const double coord = std::max({pair_scale(k.a, k.b), k.a.center.cwiseAbs().maxCoeff(), k.b.center.cwiseAbs().maxCoeff()});
+      const double ulps = 64 * kEps * coord;
+      ASSERT_LE(circle3_circle3_lower_bound(k.a, k.b), ex + ulps) << fam.name << " #" << i << " excess " << circle3_circle3_lower_bound(k.a, k.b) - ex << " ulps " << ulps << " ref " << ref_distance(k.a, k.b);
+      ASSERT_LE(circle3_circle3_lower_bound(k.b, k.a), ex + ulps) << fam.name << " #" << i << " (b, a)";
+      ++compared;
+    }
+  EXPECT_GT(compared, 1000);
+}
+
+// Nearly coaxial circles: the other centre 1e-9 to 3e-8 off the axis. Its
+// distance from the axis, taken as sqrt(dd - h0^2), lost all its digits, and
+// the radial gap of the cylinders came out above the distance (8e-10 for
+// radii 1 and 0.7, 0.2 apart along the axis, 1e-9 off it).
+TEST(CircleLowerBound, NearlyCoaxialNotAboveTheDistance) {
+  for (double off : {7e-10, 1e-9, 3e-9, 1e-8, 3e-8})
+    for (double h : {0.013, 0.05, 0.1, 0.2, 0.3}) {
+      const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0}, b{Vec3(off, 0, h), Vec3::UnitZ(), 0.7};
+      const double ex = std::hypot(h, 0.3 - off);  // the nearest point of b is off farther from the axis
+      EXPECT_LE(circle3_circle3_lower_bound(a, b), ex + 4 * kEps) << off << " " << h;
+      EXPECT_LE(circle3_circle3_lower_bound(b, a), ex + 4 * kEps) << off << " " << h;
+      EXPECT_GE(circle3_circle3_lower_bound(a, b), ex - 64 * kEps) << off << " " << h;  // still exact to rounding
+    }
+}
+
+// Circles about perpendicular axes, each past the other's plane and
+// cylinder: the planes, cylinders and bounding spheres all give 0; the sphere
+// about a's centre through a gives the gap. a: radius 1 about z at the
+// origin; b: radius 0.5 about x, centre (0.95, 0, 0.1). b's points are
+// sqrt(0.95^2 + (0.5 -+ 0.1)^2) or more from the origin: at least
+// sqrt(1.0625), outside the unit sphere through a.
+TEST(CircleLowerBound, SphereThroughTheCircle) {
+  const Circle3 a{Vec3::Zero(), Vec3::UnitZ(), 1.0}, b{Vec3(0.95, 0, 0.1), Vec3::UnitX(), 0.5};
+  const double ex = circle3_circle3_distance(a, b).distance;
+  const double lb = circle3_circle3_lower_bound(a, b);
+  EXPECT_NEAR(lb, std::sqrt(1.0625) - 1, 4 * kEps);
+  EXPECT_LE(lb, ex);
+  EXPECT_GE(lb, 0.4 * ex);
+  EXPECT_EQ(circle3_circle3_lower_bound(b, a), lb);
+}
+
 // Metamorphic checks over every family.
 // Swap: the kernel orders its arguments canonically, so swapping them is
 // bit-identical by construction (an API promise, checked in one line); the real
