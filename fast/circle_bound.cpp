@@ -29,10 +29,9 @@ Vec3 nearest_on(const Circle3& c, const Vec3& n, const Vec3& x) {
 }
 }  // namespace
 
-double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec3& hint, int rounds, Vec3* pa_out,
-                                   Vec3* pb_out) {
-  // The normals once (the projections use them 2 * rounds times).
-  const Vec3 na = a.normal.normalized(), nb = b.normal.normalized();
+namespace {
+double alternate(const Circle3& a, const Vec3& na, const Circle3& b, const Vec3& nb, const Vec3& hint, int rounds,
+                 Vec3* pa_out, Vec3* pb_out) {
   Vec3 pa = nearest_on(a, na, hint), pb = nearest_on(b, nb, pa);
   for (int i = 1; i < rounds; ++i) {
     pa = nearest_on(a, na, pb);
@@ -41,6 +40,17 @@ double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec
   if (pa_out) *pa_out = pa;
   if (pb_out) *pb_out = pb;
   return (pa - pb).norm();
+}
+}  // namespace
+
+double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec3& hint, int rounds, Vec3* pa_out,
+                                   Vec3* pb_out) {
+  // The normals once (the projections use them 2 * rounds times).
+  return alternate(a, a.normal.normalized(), b, b.normal.normalized(), hint, rounds, pa_out, pb_out);
+}
+
+double CircleBoundAxes::upper(const Vec3& ca, double ra, const Vec3& cb, double rb, int rounds) const {
+  return alternate({ca, na_, ra}, na_, {cb, nb_, rb}, nb_, cb, rounds, nullptr, nullptr);
 }
 
 }  // namespace revdist

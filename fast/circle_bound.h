@@ -55,6 +55,9 @@ class CircleBoundAxes {
     if (v > 0) return v;
     return std::max(sphere(a_on_b, ra, rb), sphere(b_on_a, rb, ra));
   }
+  // circle3_circle3_upper_bound of the same circles from b's centre, with
+  // the unit normals as they are.
+  double upper(const Vec3& ca, double ra, const Vec3& cb, double rb, int rounds) const;
 
  private:
   // A circle centre seen from the other circle's axis: its height over

@@ -1042,8 +1042,27 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const Part &qa = A.parts[ia], &qb = B.parts[ib];
     const double cheap = cheap_bound(axes, qa, qb);
     const double lb = cheap - round;
-    if (lb >= cut()) settled_lb = std::min(settled_lb, lb);
-    else heap.push({lb, ia, ib, false}, cheap + qa.disk_r + qb.disk_r);
+    if (lb >= cut()) {
+      settled_lb = std::min(settled_lb, lb);
+      return;
+    }
+    // The centre key: the closed-form bound of the disks' centre circles.
+    // Where that is 0 (circles about axes far from parallel, each past the
+    // other's plane, cylinder and sphere: around crossing surfaces, pairs at
+    // the crossing and pairs a tube's width off it alike) the pairs would
+    // be taken in no order, each paying for its tight bound before the
+    // pair at the crossing is found: an estimate of the circles' distance
+    // from above orders them (three rounds of alternating projection, a
+    // point of each circle). Measured on the motion probe's 30000 queries,
+    // least of 3 runs, at eps 1e-5: proven overlaps' p99 57.6 -> 50.4 us,
+    // median 9.2 / 9.1 (cup-bottle frame 12432: 200 node pairs and 153
+    // tight bounds before its crossing pair); M instructions for 600
+    // queries at eps 1e-5 / 1e-7 +0.7 %, for the 200 overlap frames -2.6 %
+    // (two rounds: p99 52.6).
+    double centre = cheap + qa.disk_r + qb.disk_r;
+    if (centre <= 0)
+      centre = axes.upper(qa.world_c, Solid::disk_circle_radius(qa), qb.world_c, Solid::disk_circle_radius(qb), 3);
+    heap.push({lb, ia, ib, false}, centre);
   };
   // Replaces pair e by the pairs of one side's children.
   auto split_pair = [&](const Entry& e, bool split_a) {

@@ -758,6 +758,19 @@ TEST(SolidDistanceOverlap, StepsAcrossTheCrossingProveIt) {
   }
 }
 
+// Two bottles crossing (motion-probe frame 18096): around the crossing the
+// closed-form bound of the disks' centre circles is 0 for most pairs (axes
+// far from parallel, each circle past the other's plane and cylinder), and
+// the centre order took them in no order: 149 node pairs and 88 tight
+// bounds before the pair at the crossing. An estimate of the circles'
+// distance orders them: 8 node pairs.
+TEST(SolidDistanceOverlap, CentreKeyOrdersPairsTheClosedFormCannot) {
+  Loaded L(source_path("cases/regressions/solid_overlap_crossing_key_bottles.json"), kEps);
+  const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
+  EXPECT_TRUE(r.overlap) << describe(r);
+  EXPECT_LE(r.stats.node_pairs, 40) << describe(r);
+}
+
 // Two linked rings with perpendicular axes (a scene's): the closed-form bounds
 // of inner node pairs stay below the cut for most of them, and the query popped
 // 4187 node pairs for 92 leaf pairs; the circles' distance for inner pairs of
