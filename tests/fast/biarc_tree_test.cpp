@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cstdio>
 #include <random>
 
@@ -219,6 +220,20 @@ TEST(BiarcTree, SpindleArcSplitAtExtremes) {
   const double extent = std::hypot(r - 1, 2.0);
   EXPECT_EQ(st.leaves, 2 * exact_leaves(r * M_PI / 4, extent));
   check_tree(spindle, tree, 1e-4);
+}
+
+// An arc that bulges far past its three points: through (0, -2), (2, 1e8)
+// and (0, 2) it runs once round a circle of radius 2.5e15 touching the axis
+// (a fuzzed case). Its exact spans are split to 1/16 of the curve's extent,
+// not of its points' (2.5e9 leaves and 10 GB before), and the rounding
+// allowance follows the curve's largest coordinate.
+TEST(BiarcTree, ArcBulgingPastItsPointsIsSplitByItsOwnExtent) {
+  Profile p;
+  p.pieces.push_back(arc_piece({0, -2}, {2, 1e8}, {0, 2}));
+  BuildStats st;
+  const BiarcTree tree = build_biarc_tree(p, 1e-5, &st);
+  EXPECT_LE(st.leaves, 64);
+  EXPECT_GE(tree.slack, 64 * DBL_EPSILON * 5e15 * 0.99);
 }
 
 TEST(BiarcTree, NodeCountsFollowCubicConvergence) {
