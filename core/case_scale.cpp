@@ -14,9 +14,10 @@ namespace revdist {
 double solid_extent(const SolidDef& s) {
   double extent = 0.0;
   for (const Profile& p : s.keyframes) {
-    extent = std::max(extent, profile_size(p));
-    for (const Piece& piece : p.pieces)
-      for (const Vec2& q : piece.points) extent = std::max({extent, std::abs(q.x()), std::abs(q.y())});
+    if (p.pieces.empty()) continue;
+    Vec2 lo, hi;
+    profile_box(p, &lo, &hi);
+    extent = std::max({extent, (hi - lo).norm(), lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
   }
   return extent;
 }

@@ -255,13 +255,29 @@ std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(const std::vect
 
 }  // namespace
 
+void profile_box(const Profile& profile, Vec2* lo, Vec2* hi) {
+  *lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  *hi = -*lo;
+  auto take = [&](const Vec2& q) {
+    *lo = lo->cwiseMin(q);
+    *hi = hi->cwiseMax(q);
+  };
+  for (const Piece& p : profile.pieces) {
+    for (const Vec2& q : p.points) take(q);
+    if (p.kind != PieceKind::arc || p.points.size() != 3) continue;
+    const ArcGeometry g = arc_geometry(p);
+    if (!(std::isfinite(g.radius) && g.center.allFinite())) continue;  // (collinear points: rejected as an arc)
+    const double a0 = std::min(g.start_angle, g.start_angle + g.sweep);
+    const double a1 = std::max(g.start_angle, g.start_angle + g.sweep);
+    const double quarter = 0.5 * 3.14159265358979323846;
+    for (double k = std::ceil(a0 / quarter); k * quarter <= a1; ++k)
+      take(g.center + g.radius * Vec2(std::cos(k * quarter), std::sin(k * quarter)));
+  }
+}
+
 double profile_size(const Profile& profile) {
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Piece& p : profile.pieces)
-    for (const Vec2& q : p.points) {
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
+  Vec2 lo, hi;
+  profile_box(profile, &lo, &hi);
   return profile.pieces.empty() ? 0.0 : (hi - lo).norm();
 }
 

@@ -9,7 +9,13 @@
 
 namespace revdist {
 
-// The profile's size: the diagonal of the bounding box of all control points.
+// The bounding box of the profile's curve (r in lo.x..hi.x, z in lo.y..hi.y):
+// every control point, and each arc's points at the quarter turns it passes
+// (an arc given by three points may bulge far past them; the other pieces
+// lie in the hull of their control points). Empty profile: lo = +inf, hi = -inf.
+void profile_box(const Profile& profile, Vec2* lo, Vec2* hi);
+
+// The profile's size: the diagonal of profile_box.
 double profile_size(const Profile& profile);
 
 // Tolerance for joins, axis contact and touching: 1e-9 * profile_size. Relative, so a

@@ -61,6 +61,7 @@
 #include <queue>
 #include <vector>
 
+#include "core/profile_check.h"
 #include "exact/bezier_ray_crossings.h"
 #include "exact/circle_distance_exact.h"
 #include "exact/double_interval.h"
@@ -752,16 +753,12 @@ class Solver {
   mutable std::vector<CircInfo> circ_memo_[2];
 };
 
-// Size of a profile for the width target: the extent of its control points.
-double profile_size(const Profile& p) {
-  double rmax = 0.0, zlo = kInf, zhi = -kInf;
-  for (const Piece& piece : p.pieces)
-    for (const Vec2& q : piece.points) {
-      rmax = std::max(rmax, q.x());
-      zlo = std::min(zlo, q.y());
-      zhi = std::max(zhi, q.y());
-    }
-  return std::max(2.0 * rmax, zhi - zlo);
+// Size of a profile for the width target: the extent of its curve (profile_box).
+double width_size(const Profile& p) {
+  if (p.pieces.empty()) return 0.0;
+  Vec2 lo, hi;
+  profile_box(p, &lo, &hi);
+  return std::max(2.0 * std::max(hi.x(), 0.0), hi.y() - lo.y());
 }
 
 // Per-thread CPU time: the machine is shared, wall clock would time the neighbours.
@@ -801,7 +798,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     return finish();
   }
   const Pose poses[2] = {pose_a, pose_b};
-  res.scale = std::max({profile_size(a), profile_size(b), (pose_a.translation - pose_b.translation).norm()});
+  res.scale = std::max({width_size(a), width_size(b), (pose_a.translation - pose_b.translation).norm()});
   const double tol = options.absolute_width > 0 ? options.absolute_width : options.relative_width * res.scale;
   Solver solver(elems, poses, exactly_coaxial(pose_a, pose_b));
   solver_ptr = &solver;

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/curve_eval.h"
+#include "core/profile_check.h"
 #include "fast/biarc_fit.h"
 
 namespace revdist {
@@ -320,30 +321,15 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
   // few ulp of the coordinates; 64 ulp of the largest one covers the dozen
   // operations between the input and a stored arc with room to spare.
   // Exact pieces: at most 1/16 of the profile's extent per leaf. The extent
-  // of the curve, not of its points: an arc given by three points may bulge
-  // far past them (a fuzzed case's arc through (0, -2), (2, 1e8) and (0, 2)
-  // runs once round a circle of radius 2.5e15; split to 1/16 of its points'
-  // extent it made 2.5e9 leaves, 10 GB in 15 s). Other pieces lie in the
-  // hull of their control points.
-  double lo_r = DBL_MAX, hi_r = -DBL_MAX, lo_z = DBL_MAX, hi_z = -DBL_MAX;
-  auto take = [&](const Vec2& q) {
-    lo_r = std::min(lo_r, q.x()); hi_r = std::max(hi_r, q.x());
-    lo_z = std::min(lo_z, q.y()); hi_z = std::max(hi_z, q.y());
-  };
-  for (const Piece& p : profile.pieces) {
-    for (const Vec2& q : p.points) take(q);
-    if (p.kind != PieceKind::arc || p.points.size() != 3) continue;
-    // The arc's points at the quarter turns its sweep passes.
-    const ArcGeometry g = arc_geometry(p);
-    if (!(std::isfinite(g.radius) && g.center.allFinite())) continue;  // (collinear points: a line, rejected upstream)
-    const double a0 = std::min(g.start_angle, g.start_angle + g.sweep), a1 = std::max(g.start_angle, g.start_angle + g.sweep);
-    const double quarter = 0.5 * 3.14159265358979323846;
-    for (double k = std::ceil(a0 / quarter); k * quarter <= a1; ++k)
-      take(g.center + g.radius * Vec2(std::cos(k * quarter), std::sin(k * quarter)));
-  }
-  // (The rounding allowance's scale too: the largest coordinate of the curve.)
-  const double scale = profile.pieces.empty() ? 0.0 : std::max({std::abs(lo_r), std::abs(hi_r), std::abs(lo_z), std::abs(hi_z)});
-  const double extent = profile.pieces.empty() ? 0.0 : std::hypot(hi_r - lo_r, hi_z - lo_z);
+  // of the curve, not of its points (profile_box): an arc given by three
+  // points may bulge far past them (a fuzzed case's arc through (0, -2),
+  // (2, 1e8) and (0, 2) runs once round a circle of radius 2.5e15; split to
+  // 1/16 of its points' extent it made 2.5e9 leaves, 10 GB in 15 s). The
+  // rounding allowance's scale too: the largest coordinate of the curve.
+  Vec2 lo, hi;
+  profile_box(profile, &lo, &hi);
+  const double scale = profile.pieces.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double extent = profile.pieces.empty() ? 0.0 : (hi - lo).norm();
   Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent / 16, tree};
   b.lazy = lazy;
   tree.exact_length = b.max_exact_length;

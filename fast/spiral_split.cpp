@@ -186,7 +186,9 @@ struct SplitScratch {
 bool isolate_splits(const Piece& piece, SplitScratch& sc) {
   const std::vector<BezierSegment> segs = piece_bezier_segments(piece);
   double coord_mag = 0.0, weight_mag = 1.0;
-  for (const Vec2& q : piece.points) coord_mag = std::max({coord_mag, std::abs(q.x()), std::abs(q.y())});
+  // (The segments' control points: an arc's three points may lie far inside its circle.)
+  for (const BezierSegment& g : segs)
+    for (const Vec2& q : g.points) coord_mag = std::max({coord_mag, std::abs(q.x()), std::abs(q.y())});
   for (double w : piece.weights) weight_mag = std::max(weight_mag, w);
   const bool blossomed = piece.kind == PieceKind::bspline;
   SignTrack track[4];

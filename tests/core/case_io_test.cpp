@@ -44,6 +44,7 @@ TEST(CaseIo, EveryModelReads) {
 
 // Each file in cases/bad and a fragment its one-line message must contain.
 const std::map<std::string, std::string> kBad = {
+    {"arc_bulging_past_its_points", R"(solid "s" piece 0: arc points coincide)"},
     {"arc_collinear", R"(solid "can" piece 1: arc points are collinear)"},
     {"bad_degree", R"(solid "vase" piece 0: degree 2.5)"},
     {"blend_self_intersecting", R"(instance "a" (solid "morph" at time 0.5): self-intersecting)"},

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "core/case_io.h"
+#include "core/profile_check.h"
 #include "tests/fast/biarc_test_util.h"
 
 namespace revdist {
@@ -234,6 +235,9 @@ TEST(BiarcTree, ArcBulgingPastItsPointsIsSplitByItsOwnExtent) {
   const BiarcTree tree = build_biarc_tree(p, 1e-5, &st);
   EXPECT_LE(st.leaves, 64);
   EXPECT_GE(tree.slack, 64 * DBL_EPSILON * 5e15 * 0.99);
+  // The profile's size (its tolerances, the CLI's scales) is the curve's too:
+  // r in [0, 5e15], z in [-2.5e15, 2.5e15].
+  EXPECT_NEAR(profile_size(p), 5e15 * std::sqrt(2.0), 1e3);
 }
 
 TEST(BiarcTree, NodeCountsFollowCubicConvergence) {
