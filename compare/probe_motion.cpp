@@ -5,9 +5,11 @@
 // /tmp/revdist_motion_poses_<frames>.bin, written by the first run). `--save F`
 // / `--check F` write and compare the brackets (they must intersect) between
 // builds.
-// Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE]
+// Usage: revdist_probe_motion [--eps E] [--tol T] [--frames N] [--poses FILE] [--bench-poses FILE]
 //                             [--save FILE] [--check FILE] [--times FILE] [--repeat K]
 //                             [--select LO,HI] [--only-overlap] [--index K] [--coherent] [--perfect-warm] [--worst K]
+// --bench-poses FILE takes the frames of a `revdist bench paper --poses FILE`
+// file (its pairs of the five static models, in its order) instead.
 // --worst K lists the K slowest queries (frame, pair, target distance, time,
 // bracket and work counters): where the tail comes from.
 // --only-overlap restricts --select and --worst to the queries answered with
@@ -67,6 +69,7 @@ int main(int argc, char** argv) {
   int frames = 40, repeat = 1, worst = 0;
   bool coherent = false, only_overlap = false, perfect = false;
   long only_index = -1;
+  std::string bench_poses;  // a `revdist bench paper --poses` file: its static pairs' frames
   double sel_lo = -1, sel_hi = -1;
   std::string poses_file, save, check, times;
   for (int i = 1; i < argc; ++i) {
@@ -76,6 +79,7 @@ int main(int argc, char** argv) {
     else if (a == "--tol") tol = atof(v), ++i;
     else if (a == "--frames") frames = atoi(v), ++i;
     else if (a == "--poses") poses_file = v, ++i;
+    else if (a == "--bench-poses") bench_poses = v, ++i;
     else if (a == "--save") save = v, ++i;
     else if (a == "--times") times = v, ++i;
     else if (a == "--check") check = v, ++i;
@@ -103,7 +107,31 @@ int main(int argc, char** argv) {
   for (const auto& s : in.statics) profiles.push_back(profile_at(s.def, 0.0));
 
   std::vector<FramePose> poses;
-  if (FILE* f = fopen(poses_file.c_str(), "rb")) {
+  if (!bench_poses.empty()) {
+    std::string bytes;
+    if (FILE* f = fopen(bench_poses.c_str(), "rb")) {
+      char buf[1 << 16];
+      for (std::size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
+      fclose(f);
+    }
+    const BenchPoses bp = decode_bench_poses(bytes, bench_poses);
+    auto index = [&](const std::string& name) {
+      for (std::size_t k = 0; k < in.statics.size(); ++k)
+        if (in.statics[k].name == name) return static_cast<int>(k);
+      return -1;
+    };
+    for (const auto& [name, frames_of] : bp.pairs) {
+      const std::size_t dash = name.find('-');
+      const int ia = index(name.substr(0, dash)), ib = dash == std::string::npos ? -1 : index(name.substr(dash + 1));
+      if (ia < 0 || ib < 0) continue;  // (pairs with the deformable model)
+      for (const MotionFrame& f : frames_of) {
+        FramePose p{ia, ib, f.target, {}, {}, {}, {}};
+        std::memcpy(p.Ra, f.R_WA.data(), sizeof p.Ra), std::memcpy(p.ta, f.t_WA.data(), sizeof p.ta);
+        std::memcpy(p.Rb, f.R_WB.data(), sizeof p.Rb), std::memcpy(p.tb, f.t_WB.data(), sizeof p.tb);
+        poses.push_back(p);
+      }
+    }
+  } else if (FILE* f = fopen(poses_file.c_str(), "rb")) {
     FramePose p;
     while (fread(&p, sizeof p, 1, f) == 1) poses.push_back(p);
     fclose(f);
