@@ -10,7 +10,7 @@
 #include <queue>
 
 #include "core/case_io.h"
-#include "core/curve_eval.h"
+#include "core/profile_check.h"
 #include "fast/scene/parallel.h"
 
 namespace revdist {
@@ -297,23 +297,18 @@ void Scene::set_frame(double f, SceneStats* st) {
   st->broad_nodes = static_cast<long>(tree_.size());
 }
 
-// The cylinder about the axis that holds every control point (a line's, a
-// Bezier's or a B-spline's curve lies in the hull of its control points, the
-// weights being positive) and every arc's whole circle: a box for a blended
-// shape whose tree is not built.
+// The cylinder about the axis that holds the profile's curve (profile_box:
+// its control points and each arc's quarter-turn points): a box for a
+// blended shape whose tree is not built.
 void Scene::cylinder_bounds(std::size_t shape) {
+  const Profile& profile = model_.shapes[shape]->profile;
   double r = 0.0, z0 = kInf, z1 = -kInf;
-  auto hold = [&](double rr, double lo, double hi) {
-    r = std::max(r, rr);
-    z0 = std::min(z0, lo);
-    z1 = std::max(z1, hi);
-  };
-  for (const Piece& p : model_.shapes[shape]->profile.pieces) {
-    for (const Vec2& q : p.points) hold(std::abs(q.x()), q.y(), q.y());
-    if (p.kind == PieceKind::arc) {
-      const ArcGeometry g = arc_geometry(p);
-      if (std::isfinite(g.radius)) hold(std::abs(g.center.x()) + g.radius, g.center.y() - g.radius, g.center.y() + g.radius);
-    }
+  if (!profile.pieces.empty()) {
+    Vec2 lo, hi;
+    profile_box(profile, &lo, &hi);
+    r = std::max(std::abs(lo.x()), std::abs(hi.x()));
+    z0 = lo.y();
+    z1 = hi.y();
   }
   // Rounding of the arc's centre and radius: a few ulps of the coordinates.
   const double pad = 64 * DBL_EPSILON * std::max({r, std::abs(z0), std::abs(z1)});
