@@ -41,7 +41,7 @@ double circle3_circle3_upper_bound(const Circle3& a, const Circle3& b, const Vec
 
 // The same bound for circles whose normals are two fixed unit vectors na, nb
 // (the parts of two posed solids, all about their solids' axes): the sine of
-// the normals' angle is computed once; a pair costs three square roots, and
+// the normals' angle is computed once; a pair costs five square roots, and
 // four more where the planes and cylinders leave it at 0.
 class CircleBoundAxes {
  public:
