@@ -57,6 +57,10 @@ struct BiarcFit {
   SpanKind kind = SpanKind::curve;
   std::uint8_t arcs = 2;   // 1: an exact input line or arc (part), 2: a biarc
   std::uint8_t depth = 0;  // below the spiral root
+
+  // The fit's ends: C(u0) and C(u1) as the arcs store them.
+  Vec2 start() const { return arc[0].start; }
+  Vec2 end() const { return arc[arcs - 1].end(); }
 };
 
 struct BiarcTree {

@@ -246,7 +246,7 @@ struct Solid {
     // rounding of the curve's: only the start depends on them). Every point
     // taken is the curve's own, at the iterates, which are clamped to the
     // span: an end nearest to q is reached there.
-    const Vec2 c0 = f.arc[0].start, chord = f.arc[f.arcs - 1].end() - c0;
+    const Vec2 c0 = f.start(), chord = f.end() - c0;
     const double l2 = chord.squaredNorm();
     double u = f.u0 + (l2 > 0 ? std::clamp((q - c0).dot(chord) / l2, 0.0, 1.0) : 0.5) * (f.u1 - f.u0);
     Vec2 best;
@@ -775,8 +775,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // Pairs more than `reach` times that chord apart are left alone (reach 0:
   // no limit). True when a step proves an overlap (the point in `shared`).
   auto probe_across = [&](const BiarcFit& fa, const Vec3& x, const BiarcFit& fb, const Vec3& y, double reach) {
-    const double len = std::max((fa.arc[fa.arcs - 1].end() - fa.arc[0].start).norm(),
-                                (fb.arc[fb.arcs - 1].end() - fb.arc[0].start).norm());
+    const double len = std::max((fa.end() - fa.start()).norm(), (fb.end() - fb.start()).norm());
     if (reach > 0 && !((x - y).norm() <= reach * len)) return false;
     const Solid::CurvePoint p = A.curve_point(fa, x), q = B.curve_point(fb, y);
     return A.across(p, q, len, 5, in_b) || B.across(q, p, len, 5, in_a);
@@ -997,8 +996,6 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // of the adjacent span too, so a neighbour pair's bound also bounds that
   // circle's sub-problems against the same other fit.
   std::vector<FitBound>& fit_bounds = mem.fit_bounds;
-  auto start = [](const BiarcFit& f) { return f.arc[0].start; };
-  auto end = [](const BiarcFit& f) { return f.arc[f.arcs - 1].end(); };
   // The first pair compared for each (side, end, other fit, neighbour's
   // piece and end parameter): a lookup per leaf pair instead of a scan of all
   // earlier ones (which made long queries quadratic in their leaf pairs).
@@ -1044,7 +1041,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (!it) return -kInf;
     const FitBound& f = fit_bounds[*it];
     const BiarcFit& n = mine_is_a ? A.fit(A.parts[f.a]) : B.fit(B.parts[f.b]);
-    const double gap = dir == 0 ? (end(n) - start(mine)).norm() : (start(n) - end(mine)).norm();
+    const double gap = dir == 0 ? (n.end() - mine.start()).norm() : (n.start() - mine.end()).norm();
     return f.lb - gap;
   };
   bool unresolved = false;
