@@ -758,7 +758,8 @@ PatchPairJet patch_pair_jet(const Patch& P, const Patch& Q, double u, double th)
   return pair_jet(P, BoxedPatch(P), Q, gauss_window(Q), u, th);
 }
 
-double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y) {
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y,
+                          bool each_alone) {
   const BoxedPatch bp(P);  // its axis frame, and the sizes for the stop test
   // patch_nearest's distance, with Q's window computed once.
   const GaussWindow win = gauss_window(Q);
@@ -794,7 +795,8 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
     double su, st;
     bool last = false;  // the Newton step's predicted decrease is below the resolution
     const double det = j.fuu * j.ftt - j.fut * j.fut;
-    if (j.fuu > 0 && det > 0) {
+    const bool convex = j.fuu > 0 && det > 0;
+    if (convex) {
       su = -(j.ftt * j.fu - j.fut * j.ft) / det;
       st = -(j.fuu * j.ft - j.fut * j.fu) / det;
       if ((u <= 0 && su < 0) || (u >= 1 && su > 0)) {  // against an end of [0, 1]: the azimuth alone
@@ -809,19 +811,31 @@ double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, dou
       su = j.fuu > 0 ? -j.fu / j.fuu : (j.fu > 0 ? -1.0 : 1.0);
     }
     st = std::clamp(st, -0.5, 0.5);
-    bool moved = false;
-    for (double lam = 1.0; lam > 1e-3; lam *= 0.5) {
-      const double un = std::clamp(u + lam * su, 0.0, 1.0), tn = th + lam * st;
-      double can = ca, san = sa, cn = c, sn = s;
-      turn((un - u) * sweep, &can, &san);
-      turn(tn - th, &cn, &sn);
-      const PatchPairJet jn = pair_jet(P, bp, Q, win, un, can, san, cn, sn);
-      if (jn.f < j.f) {
-        moved = std::abs(un - u) > 1e-9 || std::abs(tn - th) * bp.rmax > 1e-9 * (bp.rmax + bp.len);
-        u = un, th = tn, j = jn;
-        ca = can, sa = san, c = cn, s = sn;
-        break;
+    // The step (du, dt), halved until f decreases; false when it never does.
+    auto step = [&](double du, double dt) {
+      for (double lam = 1.0; lam > 1e-3; lam *= 0.5) {
+        const double un = std::clamp(u + lam * du, 0.0, 1.0), tn = th + lam * dt;
+        double can = ca, san = sa, cn = c, sn = s;
+        turn((un - u) * sweep, &can, &san);
+        turn(tn - th, &cn, &sn);
+        const PatchPairJet jn = pair_jet(P, bp, Q, win, un, can, san, cn, sn);
+        if (jn.f < j.f) {
+          const bool moved = std::abs(un - u) > 1e-9 || std::abs(tn - th) * bp.rmax > 1e-9 * (bp.rmax + bp.len);
+          u = un, th = tn, j = jn;
+          ca = can, sa = san, c = cn, s = sn;
+          return moved;
+        }
       }
+      return false;
+    };
+    bool moved = step(su, st);
+    // Not convex: the step in both parameters at once (each its own Newton
+    // step or a fixed one) may find no decrease where Q's nearest point
+    // changes feature; then each parameter alone.
+    if (!moved && each_alone && !convex) {
+      const PatchPairJet at = j;
+      if (at.ftt > 0) moved = step(0.0, std::clamp(-at.ft / at.ftt, -0.5, 0.5));
+      if (!moved && at.fuu > 0) moved = step(-at.fu / at.fuu, 0.0);
     }
     if (!moved || last) break;
   }

@@ -155,7 +155,12 @@ double patch_nearest(const Patch& Q, const Vec3& x, Vec3* y);
 // until a Newton step promises less than `resolution`. Only a
 // candidate pair (both points genuine, to rounding): nothing is proven about
 // it. Returns their distance.
-double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y);
+// each_alone: where a step in both parameters finds no decrease and the
+// distance is not convex there (Q's nearest point about to change feature,
+// from its face to an end circle), a step in the azimuth alone and one in u
+// alone are tried before the descent stops.
+double patch_pair_descent(const Patch& P, const Patch& Q, const Vec2& start, double resolution, Vec3* x, Vec3* y,
+                          bool each_alone = false);
 // The same from the parameters of world point `near` (near P).
 double patch_pair_descent(const Patch& P, const Patch& Q, const Vec3& near, double resolution, Vec3* x, Vec3* y);
 

@@ -547,7 +547,9 @@ TEST_P(PatchVsBrute, BudgetFailureHandsBackTheNearestCentreSeen) {
       // it, the descent reaches the truth.
       ++(d <= truth * (1 + 1e-9) + 64 * kEps * t.coord ? reached : missed);
       // ...and, seen after more boxes, it is no farther from Q.
-      if (budget > 4) EXPECT_LE(at, last_at + 64 * kEps * t.coord) << "trial " << trial << " budget " << budget;
+      if (budget > 4) {
+        EXPECT_LE(at, last_at + 64 * kEps * t.coord) << "trial " << trial << " budget " << budget;
+      }
       last_at = at;
     }
   }
@@ -605,6 +607,35 @@ TEST_P(PatchVsBrute, DescentFindsAGenuinePairAtTheMinimum) {
   // (Measured: 126-132 of 126-133 for each kind, the same with the finite
   // differences' steps as with the closed-form derivatives'.)
   EXPECT_GE(10 * at_min, 9 * separated);
+}
+
+// A descent that stalls where the other patch's nearest point changes
+// feature (bench frame 21023: a table's flat annulus S under a bottle's
+// cylinder O, whose nearest points move from its side to its bottom rim
+// near the pair's minimum). From the point a failed local proof met, the
+// step in both parameters finds no decrease (the distance is not convex
+// there) and the descent stops 5e-5 above the minimum; trying each parameter
+// alone (each_alone) goes on to it. The minimum: the enumeration's.
+TEST(PatchPairDescent, EachParameterAloneMovesPastAFeatureChange) {
+  Patch S, O;
+  S.o = Vec3(0.12572741327802014, -0.94497120297520742, 0.032616351755801576);
+  S.a = Vec3(0.25398535592533228, -0.57230482234961988, -0.77971701872592991);
+  S.straight = true;
+  S.p0 = Vec2(0.15, 0), S.p1 = Vec2(0.225, 0), S.n = Vec2(0, 1), S.off = 0;
+  O.o = Vec3::Zero();
+  O.a = Vec3(-0.023435548320763871, -0.89004108301179874, 0.45527754790467023);
+  O.straight = true;
+  O.p0 = Vec2(0.4, 0.88125), O.p1 = Vec2(0.4, 1), O.n = Vec2(-1, 0), O.off = -0.4;
+  const PatchPairResult r = patch_pair_distance(S, O);
+  ASSERT_TRUE(r.separated && r.found);
+  const Vec2 start(0.1015625, 0.39576704327449547);  // where the proof met the pair closer than its cut
+  Vec3 x, y, xe, ye;
+  const double plain = patch_pair_descent(S, O, start, 2e-8, &x, &y);
+  const double each = patch_pair_descent(S, O, start, 2e-8, &xe, &ye, true);
+  std::printf("minimum %.9e: the descent stops at %.9e, with each parameter alone at %.9e\n", r.upper, plain, each);
+  EXPECT_GT(plain, r.upper + 1e-5);  // (the stall this test is about)
+  EXPECT_NEAR(each, r.upper, 1e-9);
+  EXPECT_NEAR((xe - ye).norm(), each, 1e-15);
 }
 
 // patch_pair_jet's derivatives by central differences of its own distance:
