@@ -75,13 +75,33 @@ bool write_all(int fd, const std::string& s) {
 
 }  // namespace
 
-void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& given) {
   namespace fs = std::filesystem;
-  // A target that is a directory would make its rename fail after others succeeded.
-  for (const auto& f : files) {
+  // Where each file goes. A regular file (or none yet) is replaced by a
+  // temporary renamed over it; through a symbolic link, the file it names
+  // (the link stays a link); a device, FIFO or socket is written in place,
+  // after every temporary is complete (a stream has no whole-or-nothing, and
+  // a rename over it replaces the node itself: `--out /dev/full`, run as
+  // root, once left a JSON file where the device was). A target that is a
+  // directory would make its rename fail after others succeeded.
+  std::vector<std::pair<std::string, std::string>> files, streams;
+  for (const auto& f : given) {
     struct stat st {};
-    if (::lstat(f.first.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-      throw InputError(f.first + ": is a directory, cannot write a file there");
+    if (::stat(f.first.c_str(), &st) != 0) {  // not there yet (or a link to nothing: replaced)
+      files.push_back(f);
+      continue;
+    }
+    if (S_ISDIR(st.st_mode)) throw InputError(f.first + ": is a directory, cannot write a file there");
+    if (!S_ISREG(st.st_mode)) {
+      streams.push_back(f);
+      continue;
+    }
+    struct stat lst {};
+    std::error_code ec;
+    const fs::path real = ::lstat(f.first.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode) ? fs::canonical(f.first, ec)
+                                                                                        : fs::path(f.first);
+    if (ec) fail_io(f.first, "cannot follow the link", ec.value());
+    files.emplace_back(real.string(), f.second);
   }
   g_temps.clear();
   g_temps.reserve(files.size());
@@ -104,6 +124,13 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
       g_temps.emplace_back(buf.data());
       g_temp_count = g_temps.size();
       const bool ok = write_all(fd, f.second) && ::fchmod(fd, 0644) == 0 && ::fsync(fd) == 0;
+      const int e = errno;
+      if (::close(fd) != 0 || !ok) fail_io(f.first, "write failed", ok ? errno : e);
+    }
+    for (const auto& f : streams) {
+      const int fd = ::open(f.first.c_str(), O_WRONLY | O_CLOEXEC);
+      if (fd < 0) fail_io(f.first, "cannot open for writing", errno);
+      const bool ok = write_all(fd, f.second);
       const int e = errno;
       if (::close(fd) != 0 || !ok) fail_io(f.first, "write failed", ok ? errno : e);
     }

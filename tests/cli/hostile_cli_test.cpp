@@ -2,6 +2,7 @@
 // 13-15, 17-19): one-line errors with exit 2, no endless reads or crashes, eps/tol
 // limits, model-scaled defaults, all-or-nothing SVG output, checked stdout, streaming.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -75,6 +76,38 @@ TEST(HostileCli, FullStdoutExitsOne) {
     EXPECT_EQ(r.status, 1) << cmd << ": " << r.err;
     EXPECT_NE(r.err.find("standard output"), std::string::npos) << r.err;
   }
+}
+
+// An output path that names a FIFO, a device or a symbolic link: written
+// through, never replaced (a temporary renamed over `--out /dev/full`, run as
+// root, once left a JSON file where the device was).
+TEST(HostileCli, OutputThroughFifosDevicesAndLinksKeepsThem) {
+  namespace fs = std::filesystem;
+  const std::string fifo = temp_path("out.fifo"), got = temp_path("fifo_read.json");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  // A reader in the background, as `cat fifo > got &`.
+  const CommandRun w = run("scene-gen rings --n 2 --out " + fifo, "cat " + fifo + " > " + got + " & ");
+  EXPECT_EQ(w.status, 0) << w.err;
+  for (int i = 0; i < 100 && fs::file_size(got) == 0; ++i) usleep(20000);
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  EXPECT_TRUE(nlohmann::json::accept(std::ifstream(got))) << "the reader got " << fs::file_size(got) << " bytes";
+
+  const std::string real = temp_path("real.json"), link = temp_path("link.json");
+  { std::ofstream(real) << "old\n"; }
+  fs::create_symlink(real, link);
+  const CommandRun l = run("scene-gen rings --n 2 --out " + link);
+  EXPECT_EQ(l.status, 0) << l.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_TRUE(nlohmann::json::accept(std::ifstream(real)));
+
+  const CommandRun n = run("scene-gen rings --n 2 --out /dev/null");
+  EXPECT_EQ(n.status, 0) << n.err;
+  EXPECT_TRUE(fs::is_character_file(fs::status("/dev/null")));
+  const CommandRun f = run("scene-gen rings --n 2 --out /dev/full");
+  EXPECT_EQ(f.status, 1) << f.err;
+  EXPECT_NE(f.err.find("No space left"), std::string::npos) << f.err;
+  EXPECT_TRUE(fs::is_character_file(fs::status("/dev/full")));
+  for (const std::string& p : {fifo, got, real, link}) std::remove(p.c_str());
 }
 
 TEST(HostileCli, EpsAndTolLimits) {
