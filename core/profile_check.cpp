@@ -253,6 +253,56 @@ std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(const std::vect
   return pairs;
 }
 
+// Where curve piece p (Bezier or B-spline) stops inside its domain: a
+// parameter where its speed |C'| is at most `slow`, not within 1e-9 of the
+// domain's width of its ends (a repeated end control point is a stop at the
+// end, and harmless). At such a point the curve may turn back on itself (a
+// cusp): its two branches leave one point in one direction, within any
+// tolerance of each other near it, and no tangent exists there for the
+// spiral split and the fits' error bounds. The speed is sampled (32 points a
+// Bezier piece, 16 a B-spline's knot span), and each local minimum at most
+// half its larger neighbour (a zero between two samples leaves at least that
+// dip) refined by golden sections.
+bool stops_inside(const Piece& p, double slow, double* at) {
+  const auto [lo, hi] = piece_domain(p);
+  const double margin = 1e-9 * (hi - lo);
+  auto speed = [&](double u) {
+    Vec2 d[2];
+    piece_derivatives(p, u, 1, d);
+    return d[1].norm();
+  };
+  std::vector<double> ends{lo, hi};
+  if (p.kind == PieceKind::bspline) {
+    ends.clear();
+    for (double k : p.knots)
+      if (k >= lo && k <= hi && (ends.empty() || k > ends.back())) ends.push_back(k);
+  }
+  const int per = p.kind == PieceKind::bspline ? 16 : 32;
+  std::vector<double> us;
+  for (std::size_t j = 0; j + 1 < ends.size(); ++j)
+    for (int k = 0; k < per; ++k) us.push_back(ends[j] + (ends[j + 1] - ends[j]) * k / per);
+  us.push_back(hi);
+  std::vector<double> v(us.size());
+  for (std::size_t i = 0; i < us.size(); ++i) v[i] = speed(us[i]);
+  for (std::size_t i = 0; i < us.size(); ++i) {
+    const double left = i > 0 ? v[i - 1] : v[i], right = i + 1 < us.size() ? v[i + 1] : v[i];
+    if (left < v[i] || right < v[i] || v[i] > 0.5 * std::max(left, right)) continue;  // no dip towards 0
+    double a = us[i > 0 ? i - 1 : i], b = us[i + 1 < us.size() ? i + 1 : i];
+    const double g = 0.5 * (std::sqrt(5.0) - 1);
+    double c = b - g * (b - a), d = a + g * (b - a), fc = speed(c), fd = speed(d);
+    for (int it = 0; it < 80 && b - a > 1e-15 * (hi - lo); ++it) {
+      if (fc <= fd) b = d, d = c, fd = fc, c = b - g * (b - a), fc = speed(c);
+      else a = c, c = d, fc = fd, d = a + g * (b - a), fd = speed(d);
+    }
+    const double u = fc <= fd ? c : d, f = std::min(fc, fd);
+    if (f <= slow && u > lo + margin && u < hi - margin) {
+      *at = u;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 void profile_box(const Profile& profile, Vec2* lo, Vec2* hi) {
@@ -324,6 +374,15 @@ void check_profile(const Profile& profile, const std::string& where) {
     double r_max = 0;
     for (const Vec2& q : ps[i].points) r_max = std::max(r_max, q.x());
     if (r_max <= tol) fail_piece(where, i, "lies on the axis (r = 0 throughout): it bounds no volume");
+    // (Speed in length per unit of the domain: the polygon's length is about
+    // the speed's mean.)
+    double u_stop;
+    if ((ps[i].kind == PieceKind::bezier || ps[i].kind == PieceKind::bspline) &&
+        stops_inside(ps[i], 1e-9 * polygon_length(all) / (piece_domain(ps[i]).second - piece_domain(ps[i]).first), &u_stop))
+      fail_piece(where, i,
+                 "the curve stops at parameter " + fmt(u_stop) + ", at " + fmt(piece_point(ps[i], u_stop)) +
+                     " (its derivative vanishes inside the piece: a cusp, where it may turn back on itself); split the "
+                     "piece there");
     for (const BezierSegment& s : piece_bezier_segments(ps[i])) {
       Vec2 at;
       if (profile.closed_loop && r_below(s, tol, 40, &at))

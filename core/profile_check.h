@@ -48,6 +48,11 @@ void join_profile(Profile& profile, const std::string& where);
 //    after subdividing towards the joint. Undecided at the depth limit counts as touching.
 //    Not tested: pairs of segments whose chain separation is below 4 * tol (only possible
 //    around a cusp inside a piece, where splitting stops at size tol).
+//  - a Bezier or B-spline piece must not stop inside its domain: its speed |C'| (sampled,
+//    each local minimum refined) above 1e-9 of its control polygon's length per unit of
+//    the domain, except within 1e-9 of the domain of its ends. A cusp, where the curve turns
+//    back on itself, passes the self-intersection test (above) and has no tangent for the
+//    spiral split and the fits' error bounds (its fits were left unproven: no finite answer).
 void check_profile(const Profile& profile, const std::string& where);
 
 }  // namespace revdist

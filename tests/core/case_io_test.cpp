@@ -47,6 +47,7 @@ const std::map<std::string, std::string> kBad = {
     {"arc_bulging_past_its_points", R"(solid "s" piece 0: arc points coincide)"},
     {"arc_collinear", R"(solid "can" piece 1: arc points are collinear)"},
     {"bad_degree", R"(solid "vase" piece 0: degree 2.5)"},
+    {"bezier_cusp", R"(solid "s" piece 0: the curve stops at parameter 0.5, at (1, 0.75))"},
     {"blend_self_intersecting", R"(instance "a" (solid "morph" at time 0.5): self-intersecting)"},
     {"bspline_knot_count", R"(solid "vase" piece 0: degree 3 with 5 points needs 9 knots, got 8)"},
     {"bspline_too_few_points", R"(solid "vase" piece 1: degree 3 needs at least 4 points)"},

@@ -97,6 +97,33 @@ TEST(ProfileCheck, SmoothClosedLoopOfOneBezier) {
   EXPECT_NO_THROW(check_profile(p, "drop"));
 }
 
+// A cusp: the quartic through (0, 0), (2, 1), (0, 1), (2, 0), (0, 2) stops at
+// t = 1/2, at (1, 0.75), and leaves back in the direction it came from. Its
+// branches meet only there, so the self-intersection test passes it; its fits
+// had no tangent there and stayed unproven (a query answered no finite
+// bracket). Refused, at every scale and either way round, as a B-spline too
+// (the same quartic as one span); a stop at an end (a repeated end control
+// point) is no cusp and passes.
+TEST(ProfileCheck, CurveThatStopsInsideAPieceIsRefused) {
+  const std::vector<Vec2> cusp = {{0, 0}, {2, 1}, {0, 1}, {2, 0}, {0, 2}};
+  Profile bez, spl;
+  bez.pieces.push_back({PieceKind::bezier, 4, cusp, {}, {}});
+  spl.pieces.push_back({PieceKind::bspline, 4, cusp, {}, {0, 0, 0, 0, 0, 3, 3, 3, 3, 3}});
+  for (const Profile* p : {&bez, &spl})
+    for (double scale : {std::ldexp(1.0, -20), 1.0, std::ldexp(1.0, 20)})
+      for (bool rev : {false, true}) {
+        try {
+          check_profile(transformed(*p, scale, rev), "x");
+          ADD_FAILURE() << "a cusp passed, scale " << scale << " reversed " << rev;
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("the curve stops at parameter"), std::string::npos) << e.what();
+        }
+      }
+  Profile end_stop;  // (0, 0) twice: speed 0 at t = 0 only
+  end_stop.pieces.push_back({PieceKind::bezier, 3, {{0, 0}, {0, 0}, {2, 1}, {0, 2}}, {}, {}});
+  EXPECT_NO_THROW(check_profile(end_stop, "end stop"));
+}
+
 TEST(ProfileCheck, MorphIsValidAtEveryTime) {
   const SolidDef s = read_case(kSource + "/cases/models/morph.json").solids.at(0);
   for (int i = 0; i <= 160; ++i) {
