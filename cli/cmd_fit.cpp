@@ -77,7 +77,7 @@ void run(Options o, bool eps_given) {
       if (armed) std::filesystem::remove(dir, ec);  // only if still empty
     }
   } remove_dir{o.svg_dir, created_dir};
-  const Case c = read_case(o.file);
+  const Case c = read_case(o.file, false);  // (fit takes no pairs)
   // eps is an absolute length: the default scales with the model, and values below what
   // double rounding resolves are refused (core/case_scale.h).
   const CaseScale scale = case_scale(c);

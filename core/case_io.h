@@ -28,7 +28,9 @@ namespace revdist {
 // pairs i < j in instance order; absent "instances" is allowed (`revdist fit` needs only
 // solids). Solids are stored in the order of their names (JSON objects are unordered).
 // Scenes of 10^4 instances pass all_pairs_when_absent = false: their broad phase finds
-// the pairs, and n^2/2 listed queries would not fit in memory.
+// the pairs, and n^2/2 listed queries would not fit in memory. With it true, a case
+// without "queries" whose instances make more than kMaxAllPairs pairs is an InputError.
+inline constexpr std::size_t kMaxAllPairs = 100000;
 // An instance's optional "motion" (core/motion.h) moves it over `revdist scene` frames.
 Case read_case(const std::string& path, bool all_pairs_when_absent = true);
 // The same on text in memory (the fuzz target's entry); path only names it in messages.

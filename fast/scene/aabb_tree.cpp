@@ -2,6 +2,7 @@
 #include "fast/scene/aabb_tree.h"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 
 #include "fast/scene/parallel.h"
@@ -72,26 +73,28 @@ bool AabbTree::refit(const std::vector<Aabb>& boxes, double rebuild_ratio) {
   return true;
 }
 
-void AabbTree::cross(std::int32_t a, std::int32_t b, double d,
-                     std::vector<std::pair<std::int32_t, std::int32_t>>* out) const {
+void AabbTree::cross(std::int32_t a, std::int32_t b, double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out,
+                     std::size_t cap) const {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
-  if (na.box.gap(nb.box) > d) return;
+  if (out->size() > cap || na.box.gap(nb.box) > d) return;
   if (na.leaf() && nb.leaf()) {
     out->emplace_back(std::min(na.item, nb.item), std::max(na.item, nb.item));
     return;
   }
   // Descend the bigger box (a leaf cannot be split).
   if (nb.leaf() || (!na.leaf() && na.box.half_area() >= nb.box.half_area())) {
-    cross(na.left, b, d, out);
-    cross(na.right, b, d, out);
+    cross(na.left, b, d, out, cap);
+    cross(na.right, b, d, out, cap);
   } else {
-    cross(a, nb.left, d, out);
-    cross(a, nb.right, d, out);
+    cross(a, nb.left, d, out, cap);
+    cross(a, nb.right, d, out, cap);
   }
 }
 
-double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads) const {
+double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads,
+                              std::size_t limit, bool* over) const {
+  if (over) *over = false;
   if (nodes_.empty()) return 0.0;
   // Every pair has one lowest common ancestor, whose two subtrees it crosses:
   // one independent task per internal node. Gathered in node order, so the
@@ -104,10 +107,21 @@ double AabbTree::pairs_within(double d, std::vector<std::pair<std::int32_t, std:
   // places in parallel too.
   const std::size_t groups = std::min<std::size_t>(inner.size(), 64);
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> part(groups);
+  // Past the limit every group stops: each checks the running total after
+  // each node, and no group's own list grows past the limit.
+  std::atomic<std::size_t> total{0};
   double workers = parallel_for(groups, threads, [&](std::size_t g) {
-    for (std::size_t i = inner.size() * g / groups; i < inner.size() * (g + 1) / groups; ++i)
-      cross(nodes_[inner[i]].left, nodes_[inner[i]].right, d, &part[g]);
+    for (std::size_t i = inner.size() * g / groups; i < inner.size() * (g + 1) / groups; ++i) {
+      if (total.load(std::memory_order_relaxed) > limit) return;
+      const std::size_t before = part[g].size();
+      cross(nodes_[inner[i]].left, nodes_[inner[i]].right, d, &part[g], limit);
+      total.fetch_add(part[g].size() - before, std::memory_order_relaxed);
+    }
   });
+  if (total.load() > limit) {
+    if (over) *over = true;
+    return workers;
+  }
   std::vector<std::size_t> at(groups + 1, out->size());
   for (std::size_t g = 0; g < groups; ++g) at[g + 1] = at[g] + part[g].size();
   out->resize(at[groups]);

@@ -37,7 +37,11 @@ class AabbTree {
   // Every pair i < j of boxes whose gap is <= d, appended in an order that
   // depends on the tree only (not on the number of threads). Returns the CPU
   // seconds of the worker threads besides the caller's (0 on one thread).
-  double pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads = 1) const;
+  // More than `limit` pairs: stops early, with *over set (out then holds an
+  // arbitrary subset); a distance that takes in every pair of 20000 boxes would
+  // otherwise gather 2e8 pairs (3 GB) before anything could refuse it.
+  double pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads = 1,
+                      std::size_t limit = SIZE_MAX, bool* over = nullptr) const;
 
   // Nodes of the tree (2n - 1 for n boxes); builds done so far (1 + refits that rebuilt).
   std::size_t size() const { return nodes_.size(); }
@@ -54,7 +58,8 @@ class AabbTree {
  private:
   std::int32_t build_range(const std::vector<Aabb>& boxes, std::int32_t* items, std::int32_t n);
   double internal_area() const;
-  void cross(std::int32_t a, std::int32_t b, double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out) const;
+  void cross(std::int32_t a, std::int32_t b, double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out,
+             std::size_t cap) const;
 
   std::vector<Node> nodes_;  // nodes_[0] is the root
   double built_area_ = 0.0;

@@ -6,10 +6,12 @@
 #include <cfloat>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <queue>
 
 #include "core/case_io.h"
+#include "core/input_error.h"
 #include "core/profile_check.h"
 #include "fast/scene/parallel.h"
 
@@ -401,7 +403,15 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>>& cand = cand_;
   cand.clear();
-  parallel_section(st, [&] { return tree_.pairs_within(d, &cand, options_.threads); });
+  bool over = false;
+  parallel_section(st, [&] { return tree_.pairs_within(d, &cand, options_.threads, kMaxWithinPairs, &over); });
+  if (over) {
+    char dist[32];
+    std::snprintf(dist, sizeof dist, "%.6g", d);
+    throw InputError(std::string("within ") + dist + ": more than " + std::to_string(kMaxWithinPairs) +
+                     " pairs of instances whose boxes are that close (a call answers at most that many); ask a "
+                     "smaller distance, or --closest K");
+  }
   parallel_section(st, [&] { return sort_pairs(&cand, size(), options_.threads); });
   {
     std::vector<std::int32_t> touched;

@@ -33,6 +33,8 @@ struct SceneOptions {
   bool lazy_trees = false;
 };
 
+inline constexpr std::size_t kMaxWithinPairs = 2000000;
+
 struct ScenePair {
   std::int32_t a = 0, b = 0;  // instance indices, a < b (nearest: a is the query instance)
   SolidDistanceResult result;
@@ -83,6 +85,8 @@ class Scene {
   void set_frame(double f, SceneStats* st);
 
   // Every pair whose distance is <= d (within = true) or not proven > d, sorted by (a, b).
+  // More than kMaxWithinPairs pairs of boxes within d: an InputError, before any
+  // narrow-phase call (each pair holds a result: 2e8 pairs ran out of memory).
   // With options.coherence, a pair may be settled from its bracket of an earlier
   // call (see SceneOptions), so brackets, not decisions, depend on the history.
   std::vector<ScenePair> within(double d, SceneStats* st);

@@ -119,6 +119,28 @@ TEST(CaseIo, AllPairsWhenQueriesAbsentAndPaperPairs) {
   EXPECT_EQ(c.queries.size(), 15u);
 }
 
+// Absent queries mean all pairs, up to kMaxAllPairs of them: 448 instances
+// make 100128 pairs, refused in one line before any is listed (20000 made 2e8,
+// and std::bad_alloc); 447 make 99681. A scene's reader lists none.
+TEST(CaseIo, AllPairsAreCappedWhenQueriesAbsent) {
+  auto text = [](int n) {
+    std::string t = R"({"format": "revdist/1", "solids": {"s": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]}}, "instances": [)";
+    for (int i = 0; i < n; ++i)
+      t += (i ? ", " : "") + std::string(R"({"name": "i)") + std::to_string(i) + R"(", "solid": "s", "translation": [)" +
+           std::to_string(3 * i) + ", 0, 0]}";
+    return t + "]}";
+  };
+  EXPECT_EQ(read_case_text(text(447), "ok.json").queries.size(), 99681u);
+  try {
+    read_case_text(text(448), "many.json");
+    ADD_FAILURE() << "448 instances without queries were read";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("many.json: instances: 448 instances and no \"queries\": all 100128 pairs"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
 TEST(CaseIo, ProfileAtBlendsKeyframes) {
   const Case c = read_case(kSource + "/cases/models/morph.json");
   const SolidDef& s = c.solids.at(0);

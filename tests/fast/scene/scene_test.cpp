@@ -191,6 +191,27 @@ TEST(AabbTree, PairsWithinMatchBruteForceAfterBuildAndRefit) {
   }
 }
 
+// A distance that takes in more pairs than the limit stops the gathering (on
+// any number of threads) and says so; at the limit exactly, every pair.
+TEST(AabbTree, PairsWithinStopsPastItsLimit) {
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 300; ++i) boxes.push_back({Vec3(i, 0, 0), Vec3(i + 0.5, 1, 1)});
+  AabbTree tree;
+  tree.build(boxes);
+  const std::size_t all = 300 * 299 / 2;
+  for (int threads : {1, 3}) {
+    std::vector<PairKey> got;
+    bool over = true;
+    tree.pairs_within(1e3, &got, threads, all, &over);
+    EXPECT_FALSE(over);
+    EXPECT_EQ(got.size(), all);
+    got.clear();
+    tree.pairs_within(1e3, &got, threads, all - 1, &over);
+    EXPECT_TRUE(over) << threads << " threads";
+    EXPECT_LE(got.size(), 2 * all);
+  }
+}
+
 TEST(Scene, BoxesHoldTheSolids) {
   const Case c = random_scene(test_seed(5, "BoxesHoldTheSolids"), 30, 3.0);
   Scene s(c, SceneOptions{});
