@@ -22,6 +22,7 @@
 #include "core/case_io.h"
 #include "core/case_scale.h"
 #include "core/input_error.h"
+#include "core/json_util.h"
 #include "exact/solid_distance_exact.h"
 #include "fast/case_model.h"
 #include "fast/solid_distance.h"
@@ -121,6 +122,17 @@ class ExactEngine {
   ExactEngine(const Case& c, const Options& o) : c_(c), o_(o) {
     if (o.tol_given) xo_.absolute_width = o.tol;
     xo_.relative_width = 1e-9;
+    // A query too big for the engine (kMaxExactElementPairs) is refused
+    // before any is answered, not after minutes or half the output.
+    std::vector<long> elements(c.instances.size());
+    for (std::size_t i = 0; i < c.instances.size(); ++i)
+      elements[i] = exact_elements(profile_at(c.solids[c.instances[i].solid], c.instances[i].time));
+    for (const auto& [ia, ib] : c.queries)
+      if (elements[ia] * elements[ib] > kMaxExactElementPairs)
+        throw InputError(o.file + ": query [" + quote(c.instances[ia].name) + ", " + quote(c.instances[ib].name) +
+                         "]: " + std::to_string(elements[ia]) + " x " + std::to_string(elements[ib]) +
+                         " profile elements (Bezier segments), more than the " + std::to_string(kMaxExactElementPairs) +
+                         " element pairs the exact engine takes a query (the fast engine has no such limit)");
   }
   Answer query(std::size_t ia, std::size_t ib) const {
     const Instance& ins_a = c_.instances[ia];
@@ -271,7 +283,16 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   long unbracketed = 0;
   std::size_t done = 0;
   for (std::size_t q = 0; q < n && g_stop.load() == 0; ++q) {
-    const Answer a = engine.query(c.queries[q].first, c.queries[q].second);
+    Answer a;
+    try {
+      a = engine.query(c.queries[q].first, c.queries[q].second);
+    } catch (const std::exception& e) {
+      // A query that fails (out of memory) still leaves a whole document:
+      // the finished records and the error, as a stopped run does.
+      if (o.json) std::printf("%s], \"error\": %s}\n", done == 0 ? "" : "\n ", Json(e.what()).dump().c_str());
+      std::fflush(stdout);
+      throw;
+    }
     ++done;
     unbracketed += !(std::isfinite(a.upper) && std::isfinite(a.lower));
     if (o.json) {

@@ -59,8 +59,10 @@
 #include <ctime>
 #include <limits>
 #include <queue>
+#include <string>
 #include <vector>
 
+#include "core/curve_eval.h"
 #include "core/profile_check.h"
 #include "exact/bezier_ray_crossings.h"
 #include "exact/circle_distance_exact.h"
@@ -773,9 +775,23 @@ double round_up_sqrt(double x) { return std::nextafter(std::sqrt(x), kInf); }
 
 }  // namespace
 
+long exact_elements(const Profile& profile) {
+  long n = 0;
+  for (const Piece& piece : profile.pieces) n += static_cast<long>(piece_bezier_segments(piece).size());
+  return n;
+}
+
 ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, const Profile& b, const Pose& pose_b,
                                       const ExactSolidOptions& options) {
   const double t0 = thread_cpu_ms();
+  if (const long na = exact_elements(a), nb = exact_elements(b); na * nb > kMaxExactElementPairs) {
+    ExactSolidResult r;
+    r.upper = kInf;
+    r.reason = std::to_string(na) + " x " + std::to_string(nb) + " profile elements: more than the " +
+               std::to_string(kMaxExactElementPairs) + " element pairs a certified query takes";
+    r.time_ms = thread_cpu_ms() - t0;
+    return r;
+  }
   const auto wall0 = std::chrono::steady_clock::now();  // progress is paced in wall time, as users see it
   ExactSolidResult res;
   res.upper = kInf;
