@@ -71,6 +71,10 @@ TEST(SceneCli, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos);
   EXPECT_EQ(run("scene-gen cubes").status, 2);
+  // (--n 10^7, once allowed, ran out of memory and aborted.)
+  const CommandRun big = run("scene-gen rings --n 200001 --out " + path);
+  EXPECT_EQ(big.status, 2) << big.err;
+  EXPECT_NE(big.err.find("200000"), std::string::npos) << big.err;
   std::remove(path.c_str());
 }
 
