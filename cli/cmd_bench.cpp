@@ -55,7 +55,7 @@ void run(const Options& o) {
   };
   const BenchInput in = o.target == "paper" ? paper_bench_input(default_models_dir()) : case_bench_input(o.target);
   check_bench(in, bo);
-  prepare_output_dir(o.out);
+  NewDirGuard out_dir(o.out, prepare_output_dir(o.out));
   std::fprintf(stderr, "bench: %s, %d frames per pair, seed %llu (REVDIST_SEED or --seed to repeat)\n",
                in.source.c_str(), bo.frames, static_cast<unsigned long long>(bo.seed));
   const BenchResult r = run_bench(in, bo);
@@ -66,6 +66,7 @@ void run(const Options& o) {
   const std::vector<BenchFile> files = bench_report_files(r, build);
   std::filesystem::create_directories(o.out);
   for (const BenchFile& f : files) write_file_atomically((std::filesystem::path(o.out) / f.name).string(), f.content);
+  out_dir.keep();
 
   if (o.json) {
     std::printf("%s", bench_json(r).c_str());

@@ -1,5 +1,8 @@
 // `revdist compare CASE... [--eps LIST] [--tol LIST] [--out DIR]` (SPEC section
 // 5): argument parsing and file writing around compare/compare.h.
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -36,15 +39,25 @@ void run(Options o) {
     throw InputError("--repeat must be in 1..1000 and --frames in 0..100000");
   o.compare.arc_model = !o.no_model;
   check_compare(o.cases, o.compare);  // every case read and every eps checked before any work
-  prepare_output_dir(o.out);
+  NewDirGuard out_dir(o.out, prepare_output_dir(o.out));
+  // Progress: one updating line on a terminal; otherwise (logs, CI) a plain
+  // line at most every 10 s.
   bool shown = false;
+  const bool tty = isatty(STDERR_FILENO) == 1;
+  auto last = std::chrono::steady_clock::now();
   const CompareOutput out = run_compare(o.cases, o.compare, StressEngines{}, [&](const std::string& what) {
-    std::fprintf(stderr, "\rcompare: %-70.70s", what.c_str());
-    shown = true;
+    if (tty) {
+      std::fprintf(stderr, "\rcompare: %-70.70s", what.c_str());
+      shown = true;
+    } else if (const auto now = std::chrono::steady_clock::now(); now - last >= std::chrono::seconds(10)) {
+      std::fprintf(stderr, "compare: %s\n", what.c_str());
+      last = now;
+    }
   });
   if (shown) std::fprintf(stderr, "\n");
   std::filesystem::create_directories(o.out);
   for (const auto& [name, content] : out.files) write_file_atomically(o.out + "/" + name, content);
+  out_dir.keep();
   if (o.json) {
     std::printf("%s", out.files.at("compare.json").c_str());
   } else {

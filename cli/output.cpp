@@ -165,6 +165,11 @@ bool prepare_output_dir(const std::string& dir) {
   return created;
 }
 
+NewDirGuard::~NewDirGuard() {
+  std::error_code ec;
+  if (armed_) std::filesystem::remove(dir_, ec);  // (a directory only while empty)
+}
+
 std::string file_name_for(const std::string& name) {
   static const char* hex = "0123456789abcdef";
   std::string out;

@@ -23,6 +23,22 @@ void write_file_atomically(const std::string& path, const std::string& content);
 // directory we can write into. Returns true when it was created here.
 bool prepare_output_dir(const std::string& dir);
 
+// An output directory made by this run (prepare_output_dir returned true) is
+// removed again, if still empty, unless keep() is called: a run refused or
+// failed after making it leaves nothing behind.
+class NewDirGuard {
+ public:
+  NewDirGuard(std::string dir, bool created) : dir_(std::move(dir)), armed_(created) {}
+  NewDirGuard(const NewDirGuard&) = delete;
+  NewDirGuard& operator=(const NewDirGuard&) = delete;
+  ~NewDirGuard();
+  void keep() { armed_ = false; }
+
+ private:
+  std::string dir_;
+  bool armed_;
+};
+
 // An injective file name for any solid name: [A-Za-z0-9-] kept, every other byte
 // (including '_') written as _XX, so "a.b", "a_b" and "a b" stay distinct; very long
 // names are cut and keep a hash of the whole name.

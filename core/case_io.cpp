@@ -46,11 +46,6 @@ const char* kind_name(PieceKind k) {
 
 JsonWhere sub(const JsonWhere& w, const std::string& what) { return {w.file, w.item + " " + what}; }
 
-void reject_unknown_members(const Json& j, const std::set<std::string>& allowed, const JsonWhere& where) {
-  for (auto it = j.begin(); it != j.end(); ++it)
-    if (!allowed.count(it.key()) && it.key() != "comment") where.fail("unknown member " + in_quotes(it.key()));
-}
-
 std::vector<Vec2> read_points(const Json& j, const JsonWhere& where) {
   if (!j.is_array()) where.fail("expected an array of [r, z] points");
   std::vector<Vec2> pts;

@@ -7,6 +7,8 @@ namespace revdist {
 
 namespace {
 Circle3 read_circle(const Json& j, const JsonWhere& where) {
+  if (!j.is_object()) where.fail("expected a circle {\"center\", \"normal\", \"radius\"}");
+  reject_unknown_members(j, {"center", "normal", "radius"}, where);
   Circle3 c;
   c.center = read_vec3(require(j, "center", where), where / "center");
   c.normal = read_vec3(require(j, "normal", where), where / "normal");
@@ -40,6 +42,9 @@ std::vector<CirclePair> read_circle_pairs(const std::string& path) {
   out.reserve(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const JsonWhere w = wp[i];
+    if (!pairs[i].is_object()) w.fail("expected a pair {\"a\": circle, \"b\": circle}");
+    // (expected and infinitely_many: the bundled families' answers, for tests.)
+    reject_unknown_members(pairs[i], {"a", "b", "expected", "infinitely_many"}, w);
     out.push_back({read_circle(require(pairs[i], "a", w), w / "a"),
                    read_circle(require(pairs[i], "b", w), w / "b")});
   }

@@ -254,4 +254,9 @@ void require_format(const Json& j, const std::string& expected, const JsonWhere&
     (where / "format").fail("expected \"" + expected + "\", got " + short_dump(f));
 }
 
+void reject_unknown_members(const Json& j, const std::set<std::string>& allowed, const JsonWhere& where) {
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!allowed.count(it.key()) && it.key() != "comment") where.fail("unknown member " + quote(it.key()));
+}
+
 }  // namespace revdist

@@ -2,6 +2,7 @@
 // ("cases/x.json: pairs[3].a.radius: expected a finite number, got \"1\"").
 #pragma once
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 
 #include "core/vec.h"
@@ -44,5 +45,7 @@ Vec3 read_vec3(const Json& j, const JsonWhere& where);
 const Json& require(const Json& j, const std::string& key, const JsonWhere& where);
 // The object j must have a string member "format" equal to expected.
 void require_format(const Json& j, const std::string& expected, const JsonWhere& where);
+// Every member of object j is in `allowed` or is "comment".
+void reject_unknown_members(const Json& j, const std::set<std::string>& allowed, const JsonWhere& where);
 
 }  // namespace revdist

@@ -466,7 +466,8 @@ FitAudit audit_fit(const Piece& piece, double u0, double u1, const Arc2* arcs, i
   return auditor.run(segs);
 }
 
-TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>* per_leaf, bool tight) {
+TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>* per_leaf, bool tight,
+                       const std::function<void(std::size_t)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   TreeAudit t;
   if (per_leaf) per_leaf->clear();
@@ -490,6 +491,7 @@ TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>
       t.first_problem_reason = violation ? "certified bound exceeds the claimed eps" : a.reason;
     }
     if (per_leaf) per_leaf->push_back(a);
+    if (progress) progress(i + 1);
   }
   t.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return t;

@@ -5,6 +5,7 @@
 // includes no CGAL/GMP/MPFR header on purpose (the CLI includes it).
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -63,8 +64,9 @@ struct TreeAudit {
 // the claim proves the claim but says little more). tight = true: target 0, so
 // refinement goes on until the bound is within 5% of the proven lower bound (or
 // the node budget ends): the certified error then measures the fit itself.
+// progress (optional) is told after each leaf how many are done.
 TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>* per_leaf = nullptr,
-                       bool tight = false);
+                       bool tight = false, const std::function<void(std::size_t)>& progress = {});
 
 // The leaves of a biarc tree (fast/biarc_tree.h: BiarcTree) over `profile`.
 // A template so that exact/ does not depend on fast/ (STYLE: core <- fast,

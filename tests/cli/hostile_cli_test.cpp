@@ -343,6 +343,12 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
   expect_one_line_error(run("compare " + balls + " --out " + file), "exists and is not a directory");
   expect_one_line_error(run("bench " + balls + " --frames 1 --out " + file), "exists and is not a directory");
   EXPECT_FALSE(std::filesystem::exists(out));
+  // A bench refused after making its output directory takes it away again.
+  // (Its banner line comes first: the poses file is read once the run has begun.)
+  const CommandRun refused = run("bench " + balls + " --no-fcl --frames 1 --out " + out + " --poses /dev/null");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_NE(refused.err.find("revdist: /dev/null: cannot read"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
   for (const std::string& f : {knots, axis, file}) std::remove(f.c_str());
 }
 
@@ -354,6 +360,15 @@ TEST(HostileCli, AuditNonFiniteAnswersAndSilentFlagsAreRefused) {
       "circles.json", R"({"format": "revdist-circles/1", "pairs": [{"a": {"center": [1e155, 0, 0], "normal": [0, 0, 1],
                           "radius": 1}, "b": {"center": [-1e155, 0, 0], "normal": [0, 1, 0], "radius": 1}}]})");
   expect_one_line_error(run("circles " + circles + " --json"), "beyond +-1e100");
+  // Unknown members of a pair or a circle (a misspelt key was taken silently).
+  const std::string misspelt = audit::write(
+      "circles_key.json", R"({"format": "revdist-circles/1", "pairs": [{"a": {"center": [0, 0, 0], "normal": [0, 0, 1],
+                          "radius": 1, "color": "red"}, "b": {"center": [1, 0, 0], "normal": [0, 1, 0], "radius": 1}}]})");
+  expect_one_line_error(run("circles " + misspelt), "pairs[0].a: unknown member \"color\"");
+  const std::string extra = audit::write(
+      "circles_pair_key.json", R"({"format": "revdist-circles/1", "pairs": [{"a": {"center": [0, 0, 0], "normal": [0, 0, 1],
+                          "radius": 1}, "b": {"center": [1, 0, 0], "normal": [0, 1, 0], "radius": 1}, "c": 1}]})");
+  expect_one_line_error(run("circles " + extra), "pairs[0]: unknown member \"c\"");
   // Motions whose poses overflow: null brackets or pairs silently dropped before.
   const std::string ball = R"([{"arc": [[0, -1], [1, 0], [0, 1]]}])";
   auto moving = [&](const std::string& motion) {
