@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "core/curve_eval.h"
+#include "core/profile_check.h"
 #include "fast/biarc_fit.h"
 #include "fast/circle_bound.h"
 #include "fast/circle_distance.h"
@@ -747,9 +748,17 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   Solid A(pa, mem.parts[0], mem.fits[0]), B(pb, mem.parts[1], mem.fits[1]);
   DistanceStats& st = res.stats;
   // Rounding of world coordinates: a few ulps of the largest one involved.
-  const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(),
-                                 A.parts[0].disk_c.norm() + A.parts[0].disk_r,
-                                 B.parts[0].disk_c.norm() + B.parts[0].disk_r});
+  // (A root disk is unbounded where a fit is unproven, a near-cusp the lens
+  // bound cannot hold: then the profile's box. An infinite allowance made
+  // every upper bound infinite, and the answer no finite bracket.)
+  auto extent = [](const Solid& S, const PosedSolid& p) {
+    const Part& root = S.parts[0];
+    if (std::isfinite(root.disk_r)) return root.disk_c.norm() + root.disk_r;
+    Vec2 lo, hi;
+    profile_box(*p.profile, &lo, &hi);
+    return std::max(lo.norm(), hi.norm());
+  };
+  const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(), extent(A, pa), extent(B, pb)});
   const double round = 256 * DBL_EPSILON * coord;
 
   auto proven_overlap = [&](const Vec3& p) {

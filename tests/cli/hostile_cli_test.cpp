@@ -136,6 +136,32 @@ TEST(HostileCli, ExactEngineRefusesQueriesPastItsElementPairs) {
   std::remove(file.c_str());
 }
 
+// Second hostile review. A near-cusp (the cusp of cases/bad/bezier_cusp.json
+// with a control point moved 1e-4: no zero derivative, no self-intersection)
+// leaves fits the lens bound cannot prove: the query answered no finite
+// bracket (its rounding allowance, from an unbounded root disk, was infinite);
+// now a finite one that holds the certified distance, 7.99994826. A rational
+// quadratic of middle weight 3e4 ran the fit out of memory: weights within a
+// factor 1e4 now.
+TEST(HostileCli, UnprovenFitsStillGiveAFiniteBracketAndHugeWeightsAreRefused) {
+  const std::string near_cusp = temp_path("near_cusp.json");
+  std::ofstream(near_cusp) << R"({"format": "revdist/1", "solids": {"s": {"profile": [{"bezier": [[0, 0], [2.0001, 1], [0, 1],
+      [2, 0], [0, 2]]}]}}, "instances": [{"name": "a", "solid": "s"}, {"name": "b", "solid": "s", "translation": [10, 0, 0]}]})";
+  const CommandRun r = run("distance " + near_cusp + " --json");
+  EXPECT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << r.out;
+  const nlohmann::json& q = j["results"][0];
+  ASSERT_TRUE(q["upper"].is_number()) << q.dump();
+  EXPECT_LE(q["lower"].get<double>(), 7.999948256);  // (the certified interval: [7.999948256, 7.999948262])
+  EXPECT_GE(q["upper"].get<double>(), 7.999948256);
+  const std::string heavy = temp_path("heavy.json");
+  std::ofstream(heavy) << R"({"format": "revdist/1", "solids": {"s": {"profile": [{"bezier": [[0, -1], [1, 0], [0, 1]],
+      "weights": [1, 30000, 1]}]}}, "instances": [{"name": "a", "solid": "s"}]})";
+  expect_one_line_error(run("fit " + heavy), "weights 1 and 30000 differ by more than a factor 10000");
+  for (const std::string& f : {near_cusp, heavy}) std::remove(f.c_str());
+}
+
 TEST(HostileCli, EpsAndTolLimits) {
   const std::string c = src("cases/distance/two_spheres.json");
   expect_one_line_error(run("distance " + c + " --eps inf"), "--eps");
