@@ -72,9 +72,27 @@ TEST(SceneCli, BadInputExitsTwoWithOneLine) {
   EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos);
   EXPECT_EQ(run("scene-gen cubes").status, 2);
   // (--n 10^7, once allowed, ran out of memory and aborted.)
-  const CommandRun big = run("scene-gen rings --n 200001 --out " + path);
+  const CommandRun big = run("scene-gen rings --n 100001 --out " + path);
   EXPECT_EQ(big.status, 2) << big.err;
-  EXPECT_NE(big.err.find("200000"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("100000"), std::string::npos) << big.err;
+  // Every frame's pairs stay in memory until the one document is written:
+  // past 500000 records, refused before anything is written (60 spheres
+  // --within 100 for 100000 frames aborted out of memory).
+  {
+    std::string t = R"({"format": "revdist/1", "solids": {"s": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]}}, "instances": [)";
+    for (int i = 0; i < 60; ++i)
+      t += (i ? ", " : "") + std::string(R"({"name": "s)") + std::to_string(i) + R"(", "solid": "s", "translation": [)" +
+           std::to_string(3 * (i % 8)) + ", " + std::to_string(3 * (i / 8)) + ", 0]}";
+    const std::string many = testing::TempDir() + "revdist_scene_records_" + std::to_string(getpid()) + ".json";
+    std::ofstream(many) << t << "]}";
+    const CommandRun r = run("scene " + many + " --within 100 --frames 300 --json");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_NE(r.err.find("more than 500000 pair records"), std::string::npos) << r.err;
+    std::remove(many.c_str());
+  }
+  // (--closest 10^9 ran out of memory.)
+  EXPECT_EQ(run("scene " + path + " --closest 1000000000").status, 2);
   std::remove(path.c_str());
 }
 
