@@ -33,6 +33,10 @@ namespace {
 
 using Json = nlohmann::json;
 
+// A stop signal under --json (StopGuard below): the run ends after the query
+// under way, which an exact query ends early, with the bracket proven so far.
+std::atomic<int> g_stop{0};
+
 struct Options {
   std::string file;
   double eps = 1e-5;  // default: 1e-5 * the model's unit (core/case_scale.h)
@@ -152,6 +156,7 @@ class ExactEngine {
       std::fflush(stderr);
       shown = true;
     };
+    xo.stop = [] { return g_stop.load() != 0; };
     const ExactSolidResult r = solid_distance_exact(pa, ins_a.pose, pb, ins_b.pose, xo);
     if (shown && tty) std::fprintf(stderr, "\n");
     const double tol = o_.tol_given ? o_.tol : 1e-9 * r.scale;
@@ -205,7 +210,6 @@ class ExactEngine {
 // A second signal ends the run at once (the user insists; the document is then
 // cut, as with SIGKILL). --jsonl and the table need nothing: every line is
 // whole when it is written.
-std::atomic<int> g_stop{0};
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 extern "C" void request_stop(int sig) {

@@ -185,7 +185,7 @@ void add_scene_command(CLI::App& app) {
   cmd->add_option("--within", opts->within, "every pair at distance <= D")->check(finite_number(false));
   // (K = 10^9 on 2000 rings wrote 209 MB in 58 s; on 10000, std::bad_alloc.)
   cmd->add_option("--closest", opts->closest, "the K closest pairs (default: 1, the scene's minimum; at most 100000)")
-      ->check(CLI::Range(0L, 100000L));
+      ->check(CLI::Range(1L, 100000L));
   CLI::Option* nearest = cmd->add_option("--nearest", opts->nearest, "the K (--closest) nearest instances to this one");
   cmd->add_option("--frames", opts->frames, "frames 0..N-1, instances moved by their motion (at most 100000)")
       ->check(CLI::Range(1L, 100000L))->capture_default_str();

@@ -926,6 +926,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   };
   long pops = 0;
   bool budget_hit = false;
+  const char* ended = nullptr;  // the time budget or a stop request, when either ended the search
   const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(options.progress_interval_s));
   auto next_progress = wall0 + interval;
@@ -939,6 +940,11 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
     if (res.boxes >= options.max_boxes) {
       budget_hit = true;
       break;
+    }
+    if (pops % 256 == 255) {
+      if (options.max_cpu_s > 0 && thread_cpu_ms() - t0 > 1e3 * options.max_cpu_s) ended = "CPU time budget";
+      if (options.stop && options.stop()) ended = "stop request";
+      if (ended) break;
     }
     queue.pop();
     ++pops;
@@ -979,6 +985,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.point_a = w[s_side];
   res.point_b = w[1 - s_side];
   if (budget_hit) res.reason = "box budget reached before the width target";
+  if (ended) res.reason = std::string(ended) + " reached before the width target";
   if (!stuck.empty() && res.reason.empty()) res.reason = "boxes at rounding size remain";
 
   // Surfaces that cross at a sharp edge of a profile (a joint of two

@@ -27,6 +27,11 @@ struct ExactSolidOptions {
   double relative_width = 1e-9;
   double absolute_width = 0.0;  // > 0: the target width itself, instead of relative_width * scale
   long max_boxes = 2000000;     // work budget: parameter boxes evaluated
+  // Work budget in thread CPU seconds (0: none), and a stop request asked every
+  // 256 boxes: either ends the search with the bracket proven so far (reason
+  // says which). (One degree-8 Bezier pair ran past 60 s within the box budget.)
+  double max_cpu_s = 30.0;
+  std::function<bool()> stop;
   // Off only to test the paths against each other: tube pairs by the circle
   // distance, and box bounds on outward-rounded doubles before MPFI.
   bool use_structure = true;
