@@ -747,6 +747,14 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   for (double e : options.eps)
     if (!(e > 0) || !std::isfinite(e)) throw InputError("--eps: every value must be a finite positive number");
   if (options.frames < 1) throw InputError("--frames must be at least 1");
+  // A poses file that is there must be a file whose size can be read (it is
+  // read once the run has begun: /dev/null was refused after the banner).
+  if (!options.poses_file.empty()) {
+    std::error_code ec;
+    const auto st = std::filesystem::status(options.poses_file, ec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+      throw InputError(options.poses_file + ": cannot read (not a regular file)");
+  }
   // Before any work: fits below what doubles resolve, and meshes beyond the
   // memory limit, are refused (a 1e-8 mesh of a ball took 6 GB, 1e-20 crashed).
   std::vector<const BenchInput::Solid*> all;

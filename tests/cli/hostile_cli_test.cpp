@@ -370,10 +370,8 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
   expect_one_line_error(run("bench " + balls + " --frames 1 --out " + file), "exists and is not a directory");
   EXPECT_FALSE(std::filesystem::exists(out));
   // A bench refused after making its output directory takes it away again.
-  // (Its banner line comes first: the poses file is read once the run has begun.)
-  const CommandRun refused = run("bench " + balls + " --no-fcl --frames 1 --out " + out + " --poses /dev/null");
-  EXPECT_EQ(refused.status, 2) << refused.err;
-  EXPECT_NE(refused.err.find("revdist: /dev/null: cannot read"), std::string::npos) << refused.err;
+  expect_one_line_error(run("bench " + balls + " --no-fcl --frames 1 --out " + out + " --poses /dev/null"),
+                        "/dev/null: cannot read (not a regular file)");
   EXPECT_FALSE(std::filesystem::exists(out));
   for (const std::string& f : {knots, axis, file}) std::remove(f.c_str());
 }
