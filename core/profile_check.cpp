@@ -259,13 +259,14 @@ std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(const std::vect
 // end, and harmless). At such a point the curve may turn back on itself (a
 // cusp): its two branches leave one point in one direction, within any
 // tolerance of each other near it, and no tangent exists there for the
-// spiral split and the fits' error bounds. The speed is sampled (32 points a
-// Bezier piece, 16 a B-spline's knot span), and each local minimum at most
-// half its larger neighbour (a zero between two samples leaves at least that
-// dip) refined by golden sections.
-bool stops_inside(const Piece& p, double slow, double* at) {
+// spiral split and the fits' error bounds. `slow`: 1e-9 of the control
+// polygon's length (`polygon`, about the mean speed) per unit of the domain.
+// The speed is sampled (32 points a Bezier piece, 16 a B-spline's knot span),
+// and each local minimum at most half its larger neighbour (a zero between
+// two samples leaves at least that dip) refined by golden sections.
+bool stops_inside(const Piece& p, double polygon, double* at) {
   const auto [lo, hi] = piece_domain(p);
-  const double margin = 1e-9 * (hi - lo);
+  const double margin = 1e-9 * (hi - lo), slow = 1e-9 * polygon / (hi - lo);
   auto speed = [&](double u) {
     Vec2 d[2];
     piece_derivatives(p, u, 1, d);
@@ -319,7 +320,7 @@ void profile_box(const Profile& profile, Vec2* lo, Vec2* hi) {
     if (!(std::isfinite(g.radius) && g.center.allFinite())) continue;  // (collinear points: rejected as an arc)
     const double a0 = std::min(g.start_angle, g.start_angle + g.sweep);
     const double a1 = std::max(g.start_angle, g.start_angle + g.sweep);
-    const double quarter = 0.5 * 3.14159265358979323846;
+    const double quarter = 0.5 * kPi;
     for (double k = std::ceil(a0 / quarter); k * quarter <= a1; ++k)
       take(g.center + g.radius * Vec2(std::cos(k * quarter), std::sin(k * quarter)));
   }
@@ -374,11 +375,9 @@ void check_profile(const Profile& profile, const std::string& where) {
     double r_max = 0;
     for (const Vec2& q : ps[i].points) r_max = std::max(r_max, q.x());
     if (r_max <= tol) fail_piece(where, i, "lies on the axis (r = 0 throughout): it bounds no volume");
-    // (Speed in length per unit of the domain: the polygon's length is about
-    // the speed's mean.)
     double u_stop;
     if ((ps[i].kind == PieceKind::bezier || ps[i].kind == PieceKind::bspline) &&
-        stops_inside(ps[i], 1e-9 * polygon_length(all) / (piece_domain(ps[i]).second - piece_domain(ps[i]).first), &u_stop))
+        stops_inside(ps[i], polygon_length(all), &u_stop))
       fail_piece(where, i,
                  "the curve stops at parameter " + fmt(u_stop) + ", at " + fmt(piece_point(ps[i], u_stop)) +
                      " (its derivative vanishes inside the piece: a cusp, where it may turn back on itself); split the "

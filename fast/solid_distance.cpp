@@ -751,14 +751,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // (A root disk is unbounded where a fit is unproven, a near-cusp the lens
   // bound cannot hold: then the profile's box. An infinite allowance made
   // every upper bound infinite, and the answer no finite bracket.)
-  auto extent = [](const Solid& S, const PosedSolid& p) {
+  auto extent = [](const Solid& S) {
     const Part& root = S.parts[0];
     if (std::isfinite(root.disk_r)) return root.disk_c.norm() + root.disk_r;
     Vec2 lo, hi;
-    profile_box(*p.profile, &lo, &hi);
+    profile_box(*S.s.profile, &lo, &hi);
     return std::max(lo.norm(), hi.norm());
   };
-  const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(), extent(A, pa), extent(B, pb)});
+  const double coord = std::max({pa.t.cwiseAbs().maxCoeff(), pb.t.cwiseAbs().maxCoeff(), extent(A), extent(B)});
   const double round = 256 * DBL_EPSILON * coord;
 
   auto proven_overlap = [&](const Vec3& p) {

@@ -37,8 +37,8 @@ class AabbTree {
   // Every pair i < j of boxes whose gap is <= d, appended in an order that
   // depends on the tree only (not on the number of threads). Returns the CPU
   // seconds of the worker threads besides the caller's (0 on one thread).
-  // More than `limit` pairs: stops early, with *over set (out then holds an
-  // arbitrary subset); a distance that takes in every pair of 20000 boxes would
+  // More than `limit` pairs: stops early, with *over set and out left as it
+  // was; a distance that takes in every pair of 20000 boxes would
   // otherwise gather 2e8 pairs (3 GB) before anything could refuse it.
   double pairs_within(double d, std::vector<std::pair<std::int32_t, std::int32_t>>* out, int threads = 1,
                       std::size_t limit = SIZE_MAX, bool* over = nullptr) const;
