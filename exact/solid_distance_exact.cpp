@@ -196,6 +196,76 @@ void point_deriv(const ElemT<I>& e, const I& u, I& r, I& z, I& dr, I& dz) {
   dr = (dx * w - x * dw) / w2;
   dz = (dy * w - y * dw) / w2;
 }
+// The Bernstein coefficients of c restricted to [u0, u1] (0 <= u0 <= u1 <= 1), by
+// two de Casteljau splits at point parameters, in `out` (c.size() of them): their
+// hull encloses c's range over [u0, u1] within O((u1 - u0)^2) of it. An interval
+// parameter in de Casteljau's recurrence instead (bern above) uses each
+// coefficient twice per level, and its enclosure widens ~2x per degree: a
+// degree-8 element's boxes never got tight enough to leave 0.
+template <class I>
+void restrict_coeffs(const std::vector<I>& c, double u0, double u1, I* out) {
+  const std::size_t n = c.size();
+  for (std::size_t j = 0; j < n; ++j) out[j] = c[j];
+  if (u0 > 0) {  // the part on [u0, 1]: the right edge of de Casteljau's triangle at u0
+    const I t(u0);
+    I b[16];
+    for (std::size_t j = 0; j < n; ++j) b[j] = c[j];
+    for (std::size_t r = 1; r < n; ++r) {
+      for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + t * (b[j + 1] - b[j]);
+      out[n - 1 - r] = b[n - 1 - r];
+    }
+  }
+  if (u1 < 1) {  // the part on [0, s] of what is left, s = (u1 - u0) / (1 - u0)
+    const I s = u0 > 0 ? (I(u1) - I(u0)) / (I(1.0) - I(u0)) : I(u1);
+    I b[16];
+    for (std::size_t j = 0; j < n; ++j) b[j] = out[j];
+    for (std::size_t r = 1; r < n; ++r) {
+      for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + s * (b[j + 1] - b[j]);
+      out[r] = b[0];
+    }
+  }
+}
+template <class I>
+I hull_of(const I* c, std::size_t n) {
+  double lo = c[0].lo(), hi = c[0].hi();
+  for (std::size_t j = 1; j < n; ++j) lo = std::min(lo, c[j].lo()), hi = std::max(hi, c[j].hi());
+  return iv<I>(lo, hi);
+}
+// point_deriv over the whole parameter interval [u0, u1], from the restricted
+// coefficients' hulls (convex hull property; r and z from the projected control
+// points when every weight there is positive).
+template <class I>
+void point_deriv_range(const ElemT<I>& e, double u0, double u1, I& r, I& z, I& dr, I& dz) {
+  const std::size_t n = e.x.size(), m = e.dx.size();
+  if (n > 16 || e.y.size() != n || e.w.size() != n || e.dy.size() != m || e.dw.size() != m || !(u0 < u1) || u0 < 0 ||
+      u1 > 1)
+    return point_deriv(e, iv<I>(u0, u1), r, z, dr, dz);
+  I cx[16], cy[16], cw[16];
+  restrict_coeffs(e.x, u0, u1, cx);
+  restrict_coeffs(e.y, u0, u1, cy);
+  restrict_coeffs(e.w, u0, u1, cw);
+  const I x = hull_of(cx, n), y = hull_of(cy, n), w = hull_of(cw, n);
+  r = x / w;
+  z = y / w;
+  if (w.pos()) {
+    I px[16], py[16];
+    for (std::size_t j = 0; j < n; ++j) px[j] = cx[j] / cw[j], py[j] = cy[j] / cw[j];
+    r = meet(r, hull_of(px, n));
+    z = meet(z, hull_of(py, n));
+  }
+  if (m == 0) {
+    dr = dz = I(0.0);
+    return;
+  }
+  I ex[16], ey[16], ew[16];
+  restrict_coeffs(e.dx, u0, u1, ex);
+  restrict_coeffs(e.dy, u0, u1, ey);
+  restrict_coeffs(e.dw, u0, u1, ew);
+  const I dx = hull_of(ex, m), dy = hull_of(ey, m), dw = hull_of(ew, m);
+  const I w2 = sqr(w);
+  dr = (dx * w - x * dw) / w2;
+  dz = (dy * w - y * dw) / w2;
+}
 template <class I>
 void rot_cs(double s0, double s1, I& c, I& sn, I* dpsi_ds) {
   const bool second = s0 >= 1.0;
@@ -229,6 +299,7 @@ struct Box {
 
 struct Eval {
   double lower = 0.0, upper = kInf;  // squared distance: over the box (down), at the centre (up)
+  double rounding = 0.0;              // width of a centre value's enclosure: the arithmetic's own loss
   int split = -1;                     // dimension to halve, -1 when none can be
 };
 
@@ -242,9 +313,8 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
     h[i] = std::max(c[i] - b.lo[i], b.hi[i] - c[i]);  // the centre is rounded; h covers both sides
   }
   // Over the box: S's point, its derivatives in u and s, seen in E's frame.
-  const I U = iv<I>(b.lo[0], b.hi[0]);
   I r, z, dr, dz;
-  point_deriv(S, U, r, z, dr, dz);
+  point_deriv_range(S, b.lo[0], b.hi[0], r, z, dr, dz);
   I cs, sn, dpsi;
   rot_cs(b.lo[1], b.hi[1], cs, sn, &dpsi);
   I y[3], yu[3], ys[3];
@@ -342,7 +412,9 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
       const double exc_lo = std::max({0.0, -t.hi(), (t - I(1.0)).lo()});
       ev.lower = (I(sq_lo<I>(mig(cr))) / e2 + e2 * I(sq_lo<I>(exc_lo))).lo();
     }
-    ev.upper = (sqr(cr_c) / e2 + e2 * sqr(I(exc_hi))).hi();
+    const I up_c = sqr(cr_c) / e2 + e2 * sqr(I(exc_hi));
+    ev.upper = up_c.hi();
+    ev.rounding = up_c.hi() - up_c.lo();
     pick_split();
   } else if (E.kind == ElemKind::arc) {
     const I pr = rho - E.cx, pz = zeta - E.cy;
@@ -367,14 +439,15 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
       }
       ev.lower = sq_lo<I>(mig(q - E.R));
     }
-    double up = std::min(end_sq(E.ax, E.ay, false).hi(), end_sq(E.bx, E.by, false).hi());
+    const I ga_c = end_sq(E.ax, E.ay, false);
+    double up = std::min(ga_c.hi(), end_sq(E.bx, E.by, false).hi());
+    ev.rounding = ga_c.hi() - ga_c.lo();
     if (w0_c.nonneg() && w1_c.nonneg()) up = std::min(up, sqr(q_c - E.R).hi());
     ev.upper = up;
     pick_split();
   } else {
-    const I V = iv<I>(b.lo[2], b.hi[2]);
     I re, ze, dre, dze, rec, zec;
-    point_deriv(E, V, re, ze, dre, dze);
+    point_deriv_range(E, b.lo[2], b.hi[2], re, ze, dre, dze);
     point_of(E, I(c[2]), rec, zec);
     const I dR = rho - re, dZ = zeta - ze;
     const I g_c = sqr(rho_c - rec) + sqr(zeta_c - zec);
@@ -384,6 +457,7 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
     const I g = meet(centred(g_c, two * dR, two * dZ, 1.0, -1.0) - gv * H[2], sqr(dR) + sqr(dZ));
     ev.lower = std::max(0.0, g.lo());
     ev.upper = g_c.hi();
+    ev.rounding = g_c.hi() - g_c.lo();
     pick_split();
   }
   return ev;
@@ -424,6 +498,10 @@ double s_of(double psi) {
   const double p = psi > 0 ? psi - M_PI : psi + M_PI;
   return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
 }
+
+// A box's double bound is kept when its spread exceeds this many times its
+// centre value's rounding (see Solver::evaluate).
+constexpr double kDoubleSpread = 64.0;
 
 class Solver {
  public:
@@ -467,17 +545,24 @@ class Solver {
 
   // The bounds of a box: on doubles first; on 128-bit MPFI where the double
   // bound may be too loose to matter (squared distances near 0, where rounding
-  // of ~1e-16 scale^2 becomes ~1e-8 scale after the square root).
+  // of ~1e-16 scale^2 becomes ~1e-8 scale after the square root) and the box is
+  // small enough for that rounding to be a part of its spread (upper - lower):
+  // a wider box's bound is its extent's, and MPFI (~20x the cost) would not
+  // raise it. (Near contact every box went to MPFI before: ~100 us a box.)
   Eval evaluate(const Box& b) const {
     const Job& job = jobs[b.job];
     const Eval ev = bound_box<Di>(b, delem_[job.s_side][job.s_elem], delem_[1 - job.s_side][job.e_elem],
                                   dframes_[job.s_side]);
-    if (ev.lower > mpfi_below_) return ev;
+    if (doubles_ && (ev.lower > mpfi_below_ || ev.upper - ev.lower > kDoubleSpread * ev.rounding)) return ev;
     ++mpfi_boxes;
     return bound_box<Ia>(b, ielem_[job.s_side][job.s_elem], ielem_[1 - job.s_side][job.e_elem],
                          iframes_[job.s_side]);
   }
-  void set_mpfi_below(double squared_distance) { mpfi_below_ = squared_distance; }
+  // Doubles where they suffice (above), or MPFI on every box (doubles = false).
+  void set_mpfi_below(double squared_distance, bool doubles) {
+    mpfi_below_ = squared_distance;
+    doubles_ = doubles;
+  }
   mutable long mpfi_boxes = 0;
 
   // World points of the pair realising the centre value of a box: [0] on S, [1] on E.
@@ -747,6 +832,7 @@ class Solver {
   std::vector<ElemT<Ia>> ielem_[2];
   std::vector<ElemT<Di>> delem_[2];
   double mpfi_below_ = 0.0;
+  bool doubles_ = true;
   mutable std::vector<std::pair<std::array<double, 5>, ExactCircleResult>> circle_cache_;
   struct CircInfo {
     int state = 0;  // 0 not yet asked, 1 circular, 2 not
@@ -822,7 +908,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   // Below this distance a double bound's rounding (~1e-13 scale^2 in a squared
   // distance, ~1e-13 scale^2 / d after the square root) could exceed tol / 10.
   const double d_mpfi = 1e-12 * res.scale * res.scale / tol;
-  solver.set_mpfi_below(options.double_bounds ? d_mpfi * d_mpfi : kInf);
+  solver.set_mpfi_below(d_mpfi * d_mpfi, options.double_bounds);
 
   auto report_overlap = [&](const Vec3& p) {
     res.certified = true;
