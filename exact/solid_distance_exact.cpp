@@ -10,16 +10,20 @@
 // u rotated by psi = 2 pi s about S's axis, seen in E's frame. The roles are chosen
 // per pair: a line or arc element is the target whenever one of the two is, so the
 // distance to it has a closed form and the box is 2-D (u, s); two free-form
-// curves give a 3-D box (u, s, v) on g = (rho - r_E(v))^2 + (zeta - z_E(v))^2.
+// curves give a 3-D box (u, s, v) on g = (rho - r_E(v))^2 + (zeta - z_E(v))^2,
+// bounded below by the larger of g's own form (below) and the distance to the
+// chord of E's part over [v0, v1] less its control points' distance from it.
 //   line a-b (e = b - a):  dist^2 = cross(e, P - a)^2 / |e|^2 + |e|^2 exc(t)^2,
 //                          t = e.(P - a) / |e|^2, exc(t) = max(0, -t, t - 1);
 //   arc (c, R, q0 -> q1, less than a half turn): dist >= | |P - c| - R |, with
 //                          equality inside the (convex) sector; outside it
 //                          dist = min(|P - q0|, |P - q1|).
-// Bounds over a box. Every quantity Q above (cross, t, |P - c|, |P - q|^2, g) is
-// enclosed by the mean-value form Q(centre) + sum_i G_i [-h_i, h_i], with G_i an
-// interval enclosure of dQ/dx_i over the box (chain rule through rho and zeta),
-// intersected with the natural enclosure. rho = |v| is only Lipschitz at the axis:
+// Bounds over a box. A curve's range over a parameter interval is the hull of
+// its Bernstein coefficients restricted to it. Every quantity Q above (cross, t,
+// |P - c|, |P - q|^2, g) is enclosed by the mean-value form
+// Q(centre) + sum_i G_i [-h_i, h_i], with G_i an interval enclosure of dQ/dx_i
+// over the box (chain rule through rho and zeta), intersected with the natural
+// enclosure. rho = |v| is only Lipschitz at the axis:
 // where the box may reach the axis, d rho/dx_i is enclosed by [-|v_i|, |v_i|],
 // which contains every derivative of rho along any segment of the box (Lebourg's
 // mean value theorem; rho is absolutely continuous along segments). The same holds
@@ -303,6 +307,52 @@ struct Eval {
   int split = -1;                     // dimension to halve, -1 when none can be
 };
 
+// E's curve over [v0, v1] lies in the convex hull of its restricted control
+// points (projected; positive weights), so within delta of their chord Q0-Qn
+// (the delta-neighbourhood of a segment is convex), delta the largest distance
+// of a control point from the chord. Then the distance to that part of the curve
+// is at least the distance to the chord less delta: E's extent in v costs
+// delta = O(h_v^2) in one term, instead of a first-order term coupled to the
+// other parameters (g's mean-value form over (u, s, v): near a conformal
+// contact its boxes lined a valley of constant g, 666000 boxes for one pair of
+// Bezier solids at gap 1e-3). False when the chord is degenerate or a weight's
+// sign is not proven; the caller then bounds g itself.
+template <class I, class SegmentLower, class AddCost>
+bool chord_bound(double v0, double v1, const ElemT<I>& E, SegmentLower& segment_lower, AddCost& add_cost,
+                 double dist_c, Eval& ev) {
+  const std::size_t n = E.x.size();
+  if (n > 16 || E.y.size() != n || E.w.size() != n || !(v0 < v1)) return false;
+  I cx[16], cy[16], cw[16], qx[16], qy[16];
+  restrict_coeffs(E.x, v0, v1, cx);
+  restrict_coeffs(E.y, v0, v1, cy);
+  restrict_coeffs(E.w, v0, v1, cw);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!cw[j].pos()) return false;
+    qx[j] = cx[j] / cw[j];
+    qy[j] = cy[j] / cw[j];
+  }
+  const I ex = qx[n - 1] - qx[0], ey = qy[n - 1] - qy[0];
+  const I e2 = ex * ex + ey * ey;
+  if (!e2.pos()) return false;
+  // delta: each control point's distance to one point of the chord (its foot,
+  // clamped, in double) bounds its distance to the chord from above.
+  double delta = 0.0;
+  const double exm = 0.5 * (ex.lo() + ex.hi()), eym = 0.5 * (ey.lo() + ey.hi());
+  const double e2m = exm * exm + eym * eym;
+  for (std::size_t j = 1; j + 1 < n; ++j) {
+    const I px = qx[j] - qx[0], py = qy[j] - qy[0];
+    const double t = std::clamp((0.5 * (px.lo() + px.hi()) * exm + 0.5 * (py.lo() + py.hi()) * eym) / e2m, 0.0, 1.0);
+    delta = std::max(delta, sqrt_nonneg(sqr(px - I(t) * ex) + sqr(py - I(t) * ey)).hi());
+  }
+  if (!std::isfinite(delta)) return false;
+  I up_c;
+  const double seg = segment_lower(qx[0], qy[0], qx[n - 1], qy[n - 1], &up_c);
+  const double d = (sqrt_nonneg(I(seg)) - I(delta)).lo();
+  ev.lower = d > 0 ? sq_lo<I>(d) : 0.0;
+  add_cost(2, delta, dist_c);
+  return true;
+}
+
 // Proven bounds of the squared distance over a box of a job (S's surface patch
 // against E's element, E's frame f): see the file comment for the method.
 template <class I>
@@ -393,26 +443,28 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
   // Where the nearest target point is certainly one end, the squared distance is
   // one smooth function and its own mean-value form is tight; a sum of separately
   // bounded terms would not be (their gradients cancel at the minimum).
-  if (E.kind == ElemKind::line) {
-    const I ex = E.bx - E.ax, ey = E.by - E.ay;
+  // The squared distance to the segment a-b over the box (proven, rounded down);
+  // `up_c` gets its value at the centre.
+  auto segment_lower = [&](const I& ax, const I& ay, const I& bx, const I& by, I* up_c) {
+    const I ex = bx - ax, ey = by - ay;
     const I e2 = ex * ex + ey * ey;
-    const I cr_c = ex * (zeta_c - E.ay) - ey * (rho_c - E.ax);
-    const I t_c = ((rho_c - E.ax) * ex + (zeta_c - E.ay) * ey) / e2;
-    const I t_nat = ((rho - E.ax) * ex + (zeta - E.ay) * ey) / e2;
+    const I cr_c = ex * (zeta_c - ay) - ey * (rho_c - ax);
+    const I t_c = ((rho_c - ax) * ex + (zeta_c - ay) * ey) / e2;
+    const I t_nat = ((rho - ax) * ex + (zeta - ay) * ey) / e2;
     const double exc_hi = std::max({0.0, -t_c.lo(), (t_c - I(1.0)).hi()});
-    if (t_nat.neg() || (t_nat - I(1.0)).pos()) {  // the foot is off the segment: nearest point is an end
-      ev.lower = t_nat.neg() ? std::max(0.0, end_sq(E.ax, E.ay, true).lo())
-                             : std::max(0.0, end_sq(E.bx, E.by, true).lo());
-    } else {
-      const double elen = sqrt_nonneg(e2).lo();
-      const I cr = meet(centred(cr_c, -ey, ex, 1.0 / elen, abs(cr_c).hi() / elen),
-                        ex * (zeta - E.ay) - ey * (rho - E.ax));
-      // The tangential part lowers the bound only where the centre's foot is off the segment.
-      const I t = meet(centred(t_c, ex / e2, ey / e2, exc_hi > 0 ? elen : 0.0, exc_hi * elen), t_nat);
-      const double exc_lo = std::max({0.0, -t.hi(), (t - I(1.0)).lo()});
-      ev.lower = (I(sq_lo<I>(mig(cr))) / e2 + e2 * I(sq_lo<I>(exc_lo))).lo();
-    }
-    const I up_c = sqr(cr_c) / e2 + e2 * sqr(I(exc_hi));
+    *up_c = sqr(cr_c) / e2 + e2 * sqr(I(exc_hi));
+    if (t_nat.neg() || (t_nat - I(1.0)).pos())  // the foot is off the segment: nearest point is an end
+      return t_nat.neg() ? std::max(0.0, end_sq(ax, ay, true).lo()) : std::max(0.0, end_sq(bx, by, true).lo());
+    const double elen = sqrt_nonneg(e2).lo();
+    const I cr = meet(centred(cr_c, -ey, ex, 1.0 / elen, abs(cr_c).hi() / elen), ex * (zeta - ay) - ey * (rho - ax));
+    // The tangential part lowers the bound only where the centre's foot is off the segment.
+    const I t = meet(centred(t_c, ex / e2, ey / e2, exc_hi > 0 ? elen : 0.0, exc_hi * elen), t_nat);
+    const double exc_lo = std::max({0.0, -t.hi(), (t - I(1.0)).lo()});
+    return (I(sq_lo<I>(mig(cr))) / e2 + e2 * I(sq_lo<I>(exc_lo))).lo();
+  };
+  if (E.kind == ElemKind::line) {
+    I up_c;
+    ev.lower = segment_lower(E.ax, E.ay, E.bx, E.by, &up_c);
     ev.upper = up_c.hi();
     ev.rounding = up_c.hi() - up_c.lo();
     pick_split();
@@ -446,18 +498,31 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
     ev.upper = up;
     pick_split();
   } else {
-    I re, ze, dre, dze, rec, zec;
-    point_deriv_range(E, b.lo[2], b.hi[2], re, ze, dre, dze);
+    I rec, zec;
     point_of(E, I(c[2]), rec, zec);
-    const I dR = rho - re, dZ = zeta - ze;
     const I g_c = sqr(rho_c - rec) + sqr(zeta_c - zec);
+    ev.upper = g_c.hi();
+    ev.rounding = g_c.hi() - g_c.lo();
+    // The chord's bound and g's own mean-value form, the larger (with its split
+    // costs): the chord's is the tight one over wide parts of E; over a part so
+    // short that its control points' rounding is a fair share of the chord, the
+    // chord's direction is lost in it, and g's form is the tight one.
+    Eval ch = ev;
+    const bool chord = chord_bound(b.lo[2], b.hi[2], E, segment_lower, add_cost, std::sqrt(g_c.hi()), ch);
+    const double chord_cost[3] = {cost[0], cost[1], cost[2]};
+    cost[0] = cost[1] = cost[2] = 0.0;
+    I re, ze, dre, dze;
+    point_deriv_range(E, b.lo[2], b.hi[2], re, ze, dre, dze);
+    const I dR = rho - re, dZ = zeta - ze;
     const I two(2.0);
     const I gv = two * (dR * dre + dZ * dze);
     cost[2] = abs(gv).hi() * h[2];
     const I g = meet(centred(g_c, two * dR, two * dZ, 1.0, -1.0) - gv * H[2], sqr(dR) + sqr(dZ));
     ev.lower = std::max(0.0, g.lo());
-    ev.upper = g_c.hi();
-    ev.rounding = g_c.hi() - g_c.lo();
+    if (chord && ch.lower > ev.lower) {
+      ev.lower = ch.lower;
+      std::copy(chord_cost, chord_cost + 3, cost);
+    }
     pick_split();
   }
   return ev;
@@ -940,7 +1005,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   auto consider = [&](Box bx) {
     const Eval ev = solver.evaluate(bx);
     ++res.boxes;
-    bx.lower = std::max(ev.lower, floor_sq[bx.job]);
+    bx.lower = std::max({ev.lower, floor_sq[bx.job], bx.lower});  // a part is no nearer than its whole
     bx.split = ev.split;
     if (ev.upper < ub) {
       ub = ev.upper;
