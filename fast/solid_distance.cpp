@@ -446,8 +446,20 @@ struct Solid {
   }
 
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
-  Vec3 some_surface_point() const {
-    const Vec2 p = s.profile->pieces.front().start();
+  Vec3 some_surface_point() const { return surface_point(0); }
+  // A few points of the surface (k = 0..kSurfacePoints-1): the profile's start
+  // and end, the middles of its first and last pieces, at azimuth 0.
+  static constexpr int kSurfacePoints = 4;
+  Vec3 surface_point(int k) const {
+    const std::vector<Piece>& pieces = s.profile->pieces;
+    Vec2 p;
+    if (k == 0) p = pieces.front().start();
+    else if (k == 1) p = pieces.back().end();
+    else {
+      const Piece& piece = k == 2 ? pieces.front() : pieces.back();
+      const auto [u0, u1] = piece_domain(piece);
+      p = piece_point(piece, 0.5 * (u0 + u1));
+    }
     return s.R * Vec3(p.x(), 0, p.y()) + s.t;
   }
 
@@ -846,10 +858,22 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
 
   // Containment: a surface point of one solid strictly inside the other.
   bool containment_unknown = false;
+  // Once the surfaces are apart every point of one decides, so a point within
+  // rounding of the other's boundary (a sharp pole 1e-6 from it) gives way to
+  // the next of a few (it left the bracket at [0, 1e-6] before).
   {
-    const Vec3 x = A.some_surface_point(), y = B.some_surface_point();
-    const Side sa = B.side_of(x, round), sb = A.side_of(y, round);
+    auto side_of_surface = [&](Solid& X, Solid& Y, Vec3* at) {
+      Side side = Side::unknown;
+      for (int k = 0; k < Solid::kSurfacePoints && side == Side::unknown; ++k) {
+        *at = X.surface_point(k);
+        side = Y.side_of(*at, round);
+      }
+      return side;
+    };
+    Vec3 x, y;
+    const Side sa = side_of_surface(A, B, &x);
     if (sa == Side::inside) return proven_overlap(x);
+    const Side sb = side_of_surface(B, A, &y);
     if (sb == Side::inside) return proven_overlap(y);
     containment_unknown = sa == Side::unknown || sb == Side::unknown;
     // Coincident surfaces leave those points undecided: an interior point of

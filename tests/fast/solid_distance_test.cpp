@@ -257,6 +257,25 @@ TEST(SolidDistanceContainment, UndecidedContainmentKeepsTheLowerBoundAtZero) {
   }
 }
 
+// A sharp pole 1e-6 from the other solid (cases/regressions/
+// containment_sharp_pole_gap_1e-6.json): the containment test took the pole,
+// the profile's start, as its surface point; it lies within rounding of the
+// other's boundary, and the query ended at [0, 1e-6], "containment undecided".
+// Another of the solid's surface points decides. Certified [1.0000e-6, 1.0011e-6].
+TEST(SolidDistanceContainment, APoleNearTheOtherSurfaceGivesWayToAnotherPoint) {
+  Loaded L(source_path("cases/regressions/containment_sharp_pole_gap_1e-6.json"), 1e-5);
+  for (std::size_t q = 0; q < L.c.queries.size(); ++q) {
+    const auto [ia, ib] = L.c.queries[q];
+    for (double tol : {1e-6, 1e-9}) {
+      const SolidDistanceResult r = solid_distance(L.m.instances[ia], L.m.instances[ib], DistanceOptions{tol});
+      EXPECT_TRUE(r.converged) << L.key(q) << ": " << describe(r);
+      EXPECT_GT(r.lower, 0.0) << L.key(q) << ": " << describe(r);
+      EXPECT_LE(r.lower, 1.0010440396144413e-06) << L.key(q) << ": " << describe(r);
+      EXPECT_GE(r.upper, 1.0000000139658148e-06) << L.key(q) << ": " << describe(r);
+    }
+  }
+}
+
 TEST(SolidDistanceClosedForm, AllFilesPresent) {
   // The brief's list; a renamed file must not silently drop its test.
   for (const char* f : {"curved_pieces", "two_spheres", "sphere_can", "coaxial_stacked", "stacked_coins", "parallel_cylinders",
