@@ -267,7 +267,7 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   std::size_t name_w = 1;
   for (const Instance& inst : c.instances) name_w = std::max(name_w, std::min<std::size_t>(printable(inst.name).size(), 16));
   auto check_stdout = [] {
-    if (std::ferror(stdout)) throw std::runtime_error("error writing standard output");
+    if (std::ferror(stdout)) throw RunError("error writing standard output");
   };
   if (o.json) {
     // exact without --tol: 1e-9 x each query's scale; the absolute one is in each record's "tol".
@@ -333,7 +333,7 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   std::fflush(stdout);
   check_stdout();
   if (unbracketed > 0)
-    throw std::runtime_error(std::to_string(unbracketed) + " of " + std::to_string(n) +
+    throw RunError(std::to_string(unbracketed) + " of " + std::to_string(n) +
                              " queries ended without a finite bracket (see their reason)");
 }
 

@@ -59,7 +59,7 @@ bool is_path_problem(int e) {
 [[noreturn]] void fail_io(const std::string& path, const std::string& what, int e) {
   const std::string msg = path + ": " + what + " (" + std::strerror(e) + ")";
   if (is_path_problem(e)) throw InputError(msg);
-  throw std::runtime_error(msg);
+  throw RunError(msg);
 }
 
 bool write_all(int fd, const std::string& s) {

@@ -3,11 +3,20 @@
 #pragma once
 #include <chrono>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace revdist::cli {
+
+// A run that could not do its job for a reason that is neither the input's nor
+// a bug: an output that could not be written (no space left, an I/O error, a
+// closed pipe), queries left without a finite bracket. One line, exit 1.
+class RunError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Writes a set of files whole or not at all (SPEC section 5): every content goes to a
 // temporary opened exclusively (O_CREAT | O_EXCL, so a planted symlink or file is never
@@ -15,7 +24,7 @@ namespace revdist::cli {
 // they renamed into place. On failure, or on SIGINT / SIGTERM / SIGHUP / SIGPIPE while
 // writing, the temporaries are removed. An unusable target (a file where a directory is
 // expected, a read-only or special directory) is an InputError (exit 2); other I/O
-// failures are std::runtime_error.
+// failures are RunError (exit 1).
 void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& path_and_content);
 void write_file_atomically(const std::string& path, const std::string& content);
 

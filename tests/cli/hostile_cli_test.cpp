@@ -68,6 +68,15 @@ TEST(HostileCli, EndlessOrHugeOrBinaryInputIsRefused) {
   expect_one_line_error(run("distance /dev/stdin", "yes '[' | "), "input longer than the limit");
 }
 
+// A message is UTF-8 whatever bytes the input put into it: a byte that is
+// not (here in a file name) is written \xNN; well-formed sequences pass.
+TEST(HostileCli, MessagesAreUtf8WhateverTheInputBytes) {
+  const CommandRun r = run("distance '" + temp_path("bad\xff\xc3(name).json") + "'");
+  expect_one_line_error(r, "bad\\xFF\\xC3(name).json");
+  const CommandRun u = run("distance '" + temp_path("caf\xc3\xa9.json") + "'");
+  expect_one_line_error(u, "caf\xc3\xa9.json");
+}
+
 TEST(HostileCli, FullStdoutExitsOne) {
   for (const std::string& cmd : {"distance " + src("cases/distance/two_spheres.json"),
                                 "distance " + src("cases/distance/two_spheres.json") + " --json",
@@ -75,6 +84,7 @@ TEST(HostileCli, FullStdoutExitsOne) {
     const CommandRun r = run(cmd + " >/dev/full");
     EXPECT_EQ(r.status, 1) << cmd << ": " << r.err;
     EXPECT_NE(r.err.find("standard output"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;  // the device's failure, not a bug
   }
 }
 
@@ -106,6 +116,7 @@ TEST(HostileCli, OutputThroughFifosDevicesAndLinksKeepsThem) {
   const CommandRun f = run("scene-gen rings --n 2 --out /dev/full");
   EXPECT_EQ(f.status, 1) << f.err;
   EXPECT_NE(f.err.find("No space left"), std::string::npos) << f.err;
+  EXPECT_EQ(f.err.find("internal error"), std::string::npos) << f.err;
   EXPECT_TRUE(fs::is_character_file(fs::status("/dev/full")));
   for (const std::string& p : {fifo, got, real, link}) std::remove(p.c_str());
 }
