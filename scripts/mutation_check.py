@@ -209,6 +209,18 @@ MUTANTS = [
      "hb.seg_b) - ha.cap_r - hb.cap_r - round;",
      "hb.seg_b) - round;",
      "two parts' hull bound leaves their capsules' radii on"),
+    ("exact_range_two_coeffs", "exact/solid_distance_exact.cpp",
+     "const I x = hull_of(cx, n), y = hull_of(cy, n), w = hull_of(cw, n);",
+     "const I x = hull_of(cx, 2), y = hull_of(cy, 2), w = hull_of(cw, 2);",
+     "exact/: a Bezier's range over a box is the hull of two of its restricted coefficients, not all"),
+    ("exact_chord_no_delta", "exact/solid_distance_exact.cpp",
+     "const double d = (sqrt_nonneg(I(seg)) - I(delta)).lo();",
+     "const double d = sqrt_nonneg(I(seg)).lo();",
+     "exact/: the chord bound forgets how far the curve's control points lie from the chord"),
+    ("exact_doubles_everywhere", "exact/solid_distance_exact.cpp",
+     "if (doubles_ && (ev.lower > mpfi_below_ || ev.upper - ev.lower > kDoubleSpread * ev.rounding)) return ev;",
+     "return ev;",
+     "exact/: MPFI is never used, even where double rounding decides the bracket"),
 ]
 
 

@@ -166,6 +166,52 @@ TEST(SolidDistanceExact, HighDegreeBezierSidesConverge) {
   }
 }
 
+// Two spheres drawn as rational quadratic quarter circles (weight the double
+// nearest sqrt(2)/2, so circles to ~1e-16), searched by boxes alone (no tube
+// pairs): two free-form elements, whose bound takes the larger of g's form and
+// the chord of E's part less its control points' distance from it. An arc
+// bulges towards the other sphere past its chord: a chord bound that forgot
+// that distance would rise above the true gap.
+TEST(SolidDistanceExact, RationalBezierSpheresByBoxes) {
+  const double w = 0.7071067811865476;
+  auto sphere_of_quarters = [&](double r) {
+    Piece lo, hi;
+    lo.kind = hi.kind = PieceKind::bezier;
+    lo.degree = hi.degree = 2;
+    lo.points = {{0, -r}, {r, -r}, {r, 0}};
+    hi.points = {{r, 0}, {r, r}, {0, r}};
+    lo.weights = hi.weights = {1, w, 1};
+    return Profile{{lo, hi}, false};
+  };
+  // (1, 0.5) as TwoSpheres; a small sphere's patch against a wide part of a
+  // large one's arc is where a wrong chord bound shows first.
+  for (const auto [ra, rb] : {std::pair{1.0, 0.5}, std::pair{0.02, 1.0}})
+    for (int swap = 0; swap < 2; ++swap) {
+      SCOPED_TRACE(ra);
+      SCOPED_TRACE(swap);
+      const double e = std::sqrt(5.25) - ra - rb;
+      ExactSolidOptions o;
+      o.use_structure = false;
+      const Profile a = sphere_of_quarters(ra), b = sphere_of_quarters(rb);
+      const Pose pa = pose({0, 0, 0}), pb = pose({2, 1, 0.5}, {0.9, 0.1, 0.3, 0.2});
+      const ExactSolidResult r = swap ? solid_distance_exact(b, pb, a, pa, o) : solid_distance_exact(a, pa, b, pb, o);
+      std::printf("rational Bezier spheres %g, %g %s: [%.17g, %.17g] boxes %ld %.1f ms\n", ra, rb, swap ? "swap" : "    ",
+                  r.lower, r.upper, r.boxes, r.time_ms);
+      ASSERT_TRUE(r.certified) << r.reason;
+      EXPECT_TRUE(r.width_reached) << r.reason;
+      EXPECT_LE(r.lower, e + 1e-14);  // the weight's rounding moves the surfaces by ~1e-16
+      EXPECT_GE(r.upper, e - 1e-14);
+      // Every bracket on the way is a proof too, the coarse ones most of all
+      // (an error in a bound of wide boxes shrinks away with them).
+      for (long budget : {4L, 8L, 16L, 32L, 64L, 128L, 256L, 512L}) {
+        o.max_boxes = budget;
+        const ExactSolidResult q = swap ? solid_distance_exact(b, pb, a, pa, o) : solid_distance_exact(a, pa, b, pb, o);
+        EXPECT_LE(q.lower, e + 1e-14) << budget << " boxes";
+        EXPECT_GE(q.upper, e - 1e-14) << budget << " boxes";
+      }
+    }
+}
+
 TEST(SolidDistanceExact, TwoSpheres) {
   const double e = std::sqrt(5.25) - 1.5;  // |c| - r1 - r2
   check(sphere(1), pose({0, 0, 0}), sphere(0.5), pose({2, 1, 0.5}, {0.9, 0.1, 0.3, 0.2}), e, "two spheres");
