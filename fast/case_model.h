@@ -26,6 +26,9 @@ struct CaseModel {
 };
 
 // Builds the trees of every instance of the case at eps (lazy: see fast/biarc_tree.h).
-CaseModel build_case_model(const Case& c, double eps, bool lazy = false);
+// With defer_trees, the shapes' trees are left empty for the caller to build
+// when a query first needs one (fast/scene/scene.h: a scene of 100000 distinct
+// shapes whose queries touch a few dozen).
+CaseModel build_case_model(const Case& c, double eps, bool lazy = false, bool defer_trees = false);
 
 }  // namespace revdist

@@ -68,8 +68,9 @@ struct SceneStats {
 
 class Scene {
  public:
-  // Builds one biarc tree per distinct (solid, time) (its own for an instance
-  // whose time runs, "time_rate") and poses the instances at frame 0.
+  // One shape per distinct (solid, time) (its own for an instance whose time
+  // runs, "time_rate"), posed at frame 0. A shape's biarc tree is built when a
+  // narrow-phase query first needs it: a scene's questions cost what they touch.
   Scene(const Case& c, const SceneOptions& options);
 
   std::size_t size() const { return model_.instances.size(); }
@@ -114,7 +115,7 @@ class Scene {
   };
   bool settle_from_memory(const PairMemory& m, double d, ScenePair* p) const;
   void fit_bounds(std::size_t shape);
-  void cylinder_bounds(std::size_t shape);
+  void hull_bounds(std::size_t shape);
   double build_stale(const std::vector<std::int32_t>& instances, SceneStats* st);
   Aabb world_box(std::size_t i) const;
   SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
@@ -126,10 +127,11 @@ class Scene {
   std::vector<InstanceMotion> motion_;  // per instance
   std::vector<double> time0_;           // per instance: keyframe time at frame 0
   std::vector<SolidDef> solids_;        // the case's, for shapes whose time runs
-  // Per instance: its shape was blended for this frame but its tree not yet
-  // rebuilt (built when a narrow-phase query first needs it; boxes meanwhile
-  // come from a cylinder around the blended control points).
+  // Per shape: its tree is not built for its profile (none yet, or a blend of
+  // this frame): built when a narrow-phase query first needs it; boxes
+  // meanwhile come from a cylinder around its control points.
   mutable std::vector<char> stale_;
+  std::vector<char> runs_;  // per shape: the shape of an instance whose keyframe time runs
   CaseModel model_;
   std::vector<std::vector<LocalBound>> bounds_;  // per shape
   std::vector<Aabb> boxes_;                      // per instance, world
