@@ -81,6 +81,10 @@ using namespace solid_exact_detail;
 using fit_audit_detail::pi;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Bernstein coefficients of an element, at most (the reader refuses higher
+// degrees). Was 16: a Bezier of degree 16 to 32 left every box unbounded, and
+// its queries ended without a finite bracket.
+constexpr std::size_t kMaxCoeffs = kMaxPieceDegree + 1;
 
 using exact_detail::Di;
 
@@ -173,15 +177,18 @@ FrameT<I> convert(const Frame& f) {
   return o;
 }
 
-// As solid_exact_detail::bernstein_eval, elem_point(_deriv), rotation_cs.
+// As solid_exact_detail::bernstein_eval, elem_point(_deriv), rotation_cs; bern
+// in convex form (see restrict_coeffs): on doubles, rounding would otherwise
+// double per degree (4e-7 at degree 32, past the width target).
 template <class I>
 I bern(const std::vector<I>& c, const I& u) {
-  I b[16];
+  I b[kMaxCoeffs];
   const std::size_t n = c.size();
-  if (n > 16) return I(0.0) * iv<I>(-kInf, kInf);  // unreachable for profile degrees; stays a valid "anything"
+  if (n > kMaxCoeffs) return I(0.0) * iv<I>(-kInf, kInf);  // unreachable (the reader's degree limit); a valid "anything"
   for (std::size_t j = 0; j < n; ++j) b[j] = c[j];
+  const I v = I(1.0) - u;
   for (std::size_t r = 1; r < n; ++r)
-    for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + u * (b[j + 1] - b[j]);
+    for (std::size_t j = 0; j + r < n; ++j) b[j] = v * b[j] + u * b[j + 1];
   return b[0];
 }
 template <class I>
@@ -203,28 +210,30 @@ void point_deriv(const ElemT<I>& e, const I& u, I& r, I& z, I& dr, I& dz) {
 // The Bernstein coefficients of c restricted to [u0, u1] (0 <= u0 <= u1 <= 1), by
 // two de Casteljau splits at point parameters, in `out` (c.size() of them): their
 // hull encloses c's range over [u0, u1] within O((u1 - u0)^2) of it. An interval
-// parameter in de Casteljau's recurrence instead (bern above) uses each
-// coefficient twice per level, and its enclosure widens ~2x per degree: a
-// degree-8 element's boxes never got tight enough to leave 0.
+// parameter in de Casteljau's recurrence instead (bern above) widens with the
+// parameter's width at every level: a degree-8 element's boxes never got tight
+// enough to leave 0. Each step is the convex combination (1 - t) b_j + t b_j+1:
+// written b_j + t (b_j+1 - b_j) it uses b_j twice, and the coefficients'
+// widths doubled per degree (2^32 x rounding, ~100, after a degree-32 split).
 template <class I>
 void restrict_coeffs(const std::vector<I>& c, double u0, double u1, I* out) {
   const std::size_t n = c.size();
   for (std::size_t j = 0; j < n; ++j) out[j] = c[j];
   if (u0 > 0) {  // the part on [u0, 1]: the right edge of de Casteljau's triangle at u0
-    const I t(u0);
-    I b[16];
+    const I t(u0), t1 = I(1.0) - I(u0);
+    I b[kMaxCoeffs];
     for (std::size_t j = 0; j < n; ++j) b[j] = c[j];
     for (std::size_t r = 1; r < n; ++r) {
-      for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + t * (b[j + 1] - b[j]);
+      for (std::size_t j = 0; j + r < n; ++j) b[j] = t1 * b[j] + t * b[j + 1];
       out[n - 1 - r] = b[n - 1 - r];
     }
   }
   if (u1 < 1) {  // the part on [0, s] of what is left, s = (u1 - u0) / (1 - u0)
-    const I s = u0 > 0 ? (I(u1) - I(u0)) / (I(1.0) - I(u0)) : I(u1);
-    I b[16];
+    const I s = u0 > 0 ? (I(u1) - I(u0)) / (I(1.0) - I(u0)) : I(u1), s1 = I(1.0) - s;
+    I b[kMaxCoeffs];
     for (std::size_t j = 0; j < n; ++j) b[j] = out[j];
     for (std::size_t r = 1; r < n; ++r) {
-      for (std::size_t j = 0; j + r < n; ++j) b[j] = b[j] + s * (b[j + 1] - b[j]);
+      for (std::size_t j = 0; j + r < n; ++j) b[j] = s1 * b[j] + s * b[j + 1];
       out[r] = b[0];
     }
   }
@@ -241,10 +250,10 @@ I hull_of(const I* c, std::size_t n) {
 template <class I>
 void point_deriv_range(const ElemT<I>& e, double u0, double u1, I& r, I& z, I& dr, I& dz) {
   const std::size_t n = e.x.size(), m = e.dx.size();
-  if (n > 16 || e.y.size() != n || e.w.size() != n || e.dy.size() != m || e.dw.size() != m || !(u0 < u1) || u0 < 0 ||
+  if (n > kMaxCoeffs || e.y.size() != n || e.w.size() != n || e.dy.size() != m || e.dw.size() != m || !(u0 < u1) || u0 < 0 ||
       u1 > 1)
     return point_deriv(e, iv<I>(u0, u1), r, z, dr, dz);
-  I cx[16], cy[16], cw[16];
+  I cx[kMaxCoeffs], cy[kMaxCoeffs], cw[kMaxCoeffs];
   restrict_coeffs(e.x, u0, u1, cx);
   restrict_coeffs(e.y, u0, u1, cy);
   restrict_coeffs(e.w, u0, u1, cw);
@@ -252,7 +261,7 @@ void point_deriv_range(const ElemT<I>& e, double u0, double u1, I& r, I& z, I& d
   r = x / w;
   z = y / w;
   if (w.pos()) {
-    I px[16], py[16];
+    I px[kMaxCoeffs], py[kMaxCoeffs];
     for (std::size_t j = 0; j < n; ++j) px[j] = cx[j] / cw[j], py[j] = cy[j] / cw[j];
     r = meet(r, hull_of(px, n));
     z = meet(z, hull_of(py, n));
@@ -261,7 +270,7 @@ void point_deriv_range(const ElemT<I>& e, double u0, double u1, I& r, I& z, I& d
     dr = dz = I(0.0);
     return;
   }
-  I ex[16], ey[16], ew[16];
+  I ex[kMaxCoeffs], ey[kMaxCoeffs], ew[kMaxCoeffs];
   restrict_coeffs(e.dx, u0, u1, ex);
   restrict_coeffs(e.dy, u0, u1, ey);
   restrict_coeffs(e.dw, u0, u1, ew);
@@ -321,8 +330,8 @@ template <class I, class SegmentLower, class AddCost>
 bool chord_bound(double v0, double v1, const ElemT<I>& E, SegmentLower& segment_lower, AddCost& add_cost,
                  double dist_c, Eval& ev) {
   const std::size_t n = E.x.size();
-  if (n > 16 || E.y.size() != n || E.w.size() != n || !(v0 < v1)) return false;
-  I cx[16], cy[16], cw[16], qx[16], qy[16];
+  if (n > kMaxCoeffs || E.y.size() != n || E.w.size() != n || !(v0 < v1)) return false;
+  I cx[kMaxCoeffs], cy[kMaxCoeffs], cw[kMaxCoeffs], qx[kMaxCoeffs], qy[kMaxCoeffs];
   restrict_coeffs(E.x, v0, v1, cx);
   restrict_coeffs(E.y, v0, v1, cy);
   restrict_coeffs(E.w, v0, v1, cw);
@@ -533,7 +542,7 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
 // decided), -1 / unknown where outward-rounded doubles cannot decide.
 int crossings_di(const std::vector<Di>& x, const std::vector<Di>& y, const std::vector<Di>& w, const Di& rho,
                  const Di& zeta, int depth) {
-  if (w.size() > 16) return -1;
+  if (w.size() > kMaxCoeffs) return -1;
   auto halve_di = [](const std::vector<Di>& c, std::vector<Di>& l, std::vector<Di>& r) {  // halving is exact
     const std::size_t n = c.size();
     std::vector<Di> b = c;

@@ -221,6 +221,14 @@ MUTANTS = [
      "if (doubles_ && (ev.lower > mpfi_below_ || ev.upper - ev.lower > kDoubleSpread * ev.rounding)) return ev;",
      "return ev;",
      "exact/: MPFI is never used, even where double rounding decides the bracket"),
+    ("exact_bern_difference_form", "exact/solid_distance_exact.cpp",
+     "b[j] = v * b[j] + u * b[j + 1];",
+     "b[j] = b[j] + u * (b[j + 1] - b[j]);",
+     "exact/: de Casteljau at a box centre uses each coefficient twice (rounding doubles per degree)"),
+    ("exact_sixteen_coefficients", "exact/solid_distance_exact.cpp",
+     "constexpr std::size_t kMaxCoeffs = kMaxPieceDegree + 1;",
+     "constexpr std::size_t kMaxCoeffs = 16;",
+     "exact/: elements of degree 16 to 32 get unbounded boxes"),
 ]
 
 

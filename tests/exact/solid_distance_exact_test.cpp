@@ -126,44 +126,78 @@ TEST(SolidDistanceExact, CpuBudgetAndStopEndTheSearchWithAProvenBracket) {
   EXPECT_LE(r.lower, q.upper);
 }
 
-// A cylinder whose side is a line written as a degree-8 Bezier (degree-elevated:
-// evenly spaced control points), height 2, radius 1.
-Profile bezier_side_cylinder() {
+// A cylinder whose side is a line written as a Bezier of the given degree
+// (degree-elevated: evenly spaced control points), height 2.2, radius 0.9
+// (not dyadic: the splits round).
+Profile bezier_side_cylinder(int degree) {
   Piece side;
   side.kind = PieceKind::bezier;
-  side.degree = 8;
-  for (int i = 0; i <= 8; ++i) side.points.emplace_back(1.0, 2.0 * i / 8.0);
-  return Profile{{line({0, 0}, {1, 0}), side, line({1, 2}, {0, 2})}, false};
+  side.degree = degree;
+  for (int i = 0; i <= degree; ++i) side.points.emplace_back(0.9, 2.2 * i / degree);
+  side.points.back() = {0.9, 2.2};
+  return Profile{{line({0, 0}, {0.9, 0}), side, line({0.9, 2.2}, {0, 2.2})}, false};
 }
 
 // Two free-form sides (3-D boxes) of degree 8, axes crossed at right angles:
-// the distance is the axes' distance less both radii, x - 2. The box bounds
+// the distance is the axes' distance less both radii, x - 1.8. The box bounds
 // take the Bezier's range from its coefficients restricted to the box (an
 // interval parameter in de Casteljau's recurrence widened the enclosure ~2x
 // per degree: one degree-8 element stayed at [0, 0.503] after 300000 boxes),
 // and doubles carry every box whose spread is far above their rounding (near
 // contact every box went to MPFI: a gap of 1e-3 between two Bezier solids
 // ended on the CPU budget after 280000 boxes, 100 us each).
+//
+// Degree 32 (the reader's limit) also: every array held 16 coefficients, so a
+// Bezier of degree 16 to 32 left every box unbounded (no finite bracket), and
+// de Casteljau written b_j + t (b_j+1 - b_j) doubled the coefficients' widths
+// per degree (2^32 x rounding after one split).
 TEST(SolidDistanceExact, HighDegreeBezierSidesConverge) {
-  const Profile c = bezier_side_cylinder();
-  for (double x : {2.5, 2.001}) {
-    SCOPED_TRACE(x);
-    // Rotated a quarter turn about x (the exact rotation of q = (1, 1, 0, 0) / |q|):
-    // B's axis runs from (x, 1, 1) to (x, -1, 1), A's from (0, 0, 0) to (0, 0, 2).
-    const Pose pb = pose({x, 1, 1}, {1, 1, 0, 0});
-    ExactSolidOptions o;
-    o.max_boxes = 100000;
-    o.max_cpu_s = 0;  // the box budget alone decides, on any machine
-    const ExactSolidResult r = solid_distance_exact(c, pose({0, 0, 0}), c, pb, o);
-    std::printf("crossed degree-8 cylinders at %g: [%.17g, %.17g] boxes %ld (mpfi %ld) %.1f ms\n", x, r.lower, r.upper,
-                r.boxes, r.mpfi_boxes, r.time_ms);
-    ASSERT_TRUE(r.certified) << r.reason;
-    EXPECT_TRUE(r.width_reached) << r.reason;
-    EXPECT_LE(r.lower, x - 2.0);
-    EXPECT_GE(r.upper, x - 2.0);
-    EXPECT_LE(r.boxes, 2000);  // before both: 20000-28000
-    EXPECT_LE(r.mpfi_boxes, r.boxes / 2);
+  for (int degree : {8, 32}) {
+    for (double x : {2.3, 1.801}) {
+      SCOPED_TRACE(degree);
+      SCOPED_TRACE(x);
+      const Profile c = bezier_side_cylinder(degree);
+      // Rotated a quarter turn about x (the exact rotation of q = (1, 1, 0, 0) / |q|):
+      // B's axis runs from (x, 1.1, 1.1) to (x, -1.1, 1.1), A's from (0, 0, 0) to (0, 0, 2.2).
+      const Pose pb = pose({x, 1.1, 1.1}, {1, 1, 0, 0});
+      ExactSolidOptions o;
+      o.max_boxes = 100000;
+      o.max_cpu_s = 0;  // the box budget alone decides, on any machine
+      const ExactSolidResult r = solid_distance_exact(c, pose({0, 0, 0}), c, pb, o);
+      std::printf("crossed degree-%d cylinders at %g: [%.17g, %.17g] boxes %ld (mpfi %ld) %.1f ms\n", degree, x, r.lower,
+                  r.upper, r.boxes, r.mpfi_boxes, r.time_ms);
+      ASSERT_TRUE(r.certified) << r.reason;
+      EXPECT_TRUE(r.width_reached) << r.reason;
+      EXPECT_LE(r.lower, x - 1.8);
+      EXPECT_GE(r.upper, x - 1.8);
+      EXPECT_LE(r.boxes, 2000);  // degree 8 before both: 20000-28000
+      EXPECT_LE(r.mpfi_boxes, r.boxes / 2);
+    }
   }
+}
+
+// Two solids of one degree-32 Bezier whose control points zigzag (r = 0.7,
+// 1.3, 0.7, ...): before, every box was unbounded (16 coefficients at most)
+// and then, at the centres, de Casteljau's rounding doubled per degree, so the
+// bracket stopped at a width of 2e-6. The fast engine's bracket (eps 1e-5, tol
+// 1e-6: [0.965530491, 0.965531079]) must meet it.
+TEST(SolidDistanceExact, ZigzagDegree32SolidsCertify) {
+  Piece p;
+  p.kind = PieceKind::bezier;
+  p.degree = 32;
+  p.points.emplace_back(0.0, 0.0);
+  for (int i = 1; i < 32; ++i) p.points.emplace_back(i % 2 ? 0.7 : 1.3, 2.0 * i / 32);
+  p.points.emplace_back(0.0, 2.0);
+  const Profile s{{p}, false};
+  ExactSolidOptions o;
+  o.max_boxes = 20000;
+  o.max_cpu_s = 0;
+  const ExactSolidResult r = solid_distance_exact(s, pose({0, 0, 0}), s, pose({2.6, 0.1, 0.2}, {0.9, 0.1, 0.3, 0.2}), o);
+  std::printf("zigzag degree 32: [%.17g, %.17g] boxes %ld %.1f ms\n", r.lower, r.upper, r.boxes, r.time_ms);
+  ASSERT_TRUE(r.certified) << r.reason;
+  EXPECT_TRUE(r.width_reached) << r.reason;
+  EXPECT_LE(r.lower, 0.965531079);
+  EXPECT_GE(r.upper, 0.965530491);
 }
 
 // Two spheres drawn as rational quadratic quarter circles (weight the double
