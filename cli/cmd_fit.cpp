@@ -132,6 +132,7 @@ void run(Options o, bool eps_given) {
         j["certified_error"] = a.certified == a.leaves ? Json(a.max_certified_error) : Json(nullptr);
         j["certified_leaves"] = a.certified;
         j["violations"] = a.violations;
+        j["unconfirmed"] = a.unconfirmed;
         j["audit_ms"] = a.time_ms;
         if (!a.first_problem_reason.empty()) j["audit_problem"] = a.first_problem_reason;
       }
@@ -142,7 +143,7 @@ void run(Options o, bool eps_given) {
     return;
   }
   std::vector<std::string> header = {"solid", "pieces", "spirals", "nodes", "leaves", "bytes", "build_us", "max_error"};
-  if (o.audit) header.insert(header.end(), {"certified_error", "violations"});
+  if (o.audit) header.insert(header.end(), {"certified_error", "violations", "unconfirmed"});
   Table table(header);
   for (const SolidFit& f : fits) {
     std::vector<std::string> row = {f.name, std::to_string(f.stats.pieces), std::to_string(f.stats.spirals),
@@ -154,6 +155,7 @@ void run(Options o, bool eps_given) {
       row.push_back(a.certified == a.leaves ? fixed_digits(a.max_certified_error, 3)
                                             : "uncertified (" + std::to_string(a.leaves - a.certified) + " leaves)");
       row.push_back(std::to_string(a.violations));
+      row.push_back(std::to_string(a.unconfirmed));
     }
     table.add(row);
   }

@@ -476,7 +476,8 @@ TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>
     const FitAudit a = audit_fit(*l.piece, l.u0, l.u1, l.arcs, l.n_arcs, tight ? 0.0 : l.claimed);
     ++t.leaves;
     t.nodes += a.nodes;
-    const bool violation = a.certified && a.certified_error > l.claimed;
+    const bool over = a.certified && a.certified_error > l.claimed;
+    const bool violation = over && a.lower_bound > l.claimed;
     if (a.certified) {
       ++t.certified;
       if (a.certified_error > t.max_certified_error || t.certified == 1) {
@@ -486,9 +487,13 @@ TreeAudit audit_leaves(const std::vector<FitLeaf>& leaves, std::vector<FitAudit>
       }
     }
     if (violation) ++t.violations;
-    if ((violation || !a.certified) && t.first_problem == static_cast<std::size_t>(-1)) {
+    else if (over) ++t.unconfirmed;
+    if ((over || !a.certified) && t.first_problem == static_cast<std::size_t>(-1)) {
       t.first_problem = i;
-      t.first_problem_reason = violation ? "certified bound exceeds the claimed eps" : a.reason;
+      t.first_problem_reason = violation ? "proven error exceeds the claimed eps (a fitter bug)"
+                               : over    ? "certified bound exceeds the claimed eps (not confirmed; the proven lower "
+                                           "bound is below the claim)"
+                                         : a.reason;
     }
     if (per_leaf) per_leaf->push_back(a);
     if (progress) progress(i + 1);

@@ -244,6 +244,7 @@ TEST(Cli, FitJsonHasSpecKeysAndAuditCertifies) {
     for (const char* key : {"name", "nodes", "leaves", "bytes", "build_us", "max_error", "certified_error"})
       EXPECT_TRUE(s.contains(key)) << key;
     EXPECT_EQ(s["violations"], 0);
+    EXPECT_EQ(s["unconfirmed"], 0);
     EXPECT_LE(s["certified_error"].get<double>(), s["max_error"].get<double>());
   }
 }

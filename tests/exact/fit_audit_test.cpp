@@ -144,6 +144,7 @@ TEST(FitAudit, ArcPieceSpansByExactArcs) {
   const TreeAudit t = audit_leaves(leaves, &per);
   EXPECT_EQ(t.certified, t.leaves) << t.first_problem_reason;
   EXPECT_EQ(t.violations, 0);
+  EXPECT_EQ(t.unconfirmed, 0);
   EXPECT_LE(t.max_certified_error, kExactTol);
   // An arc of 300 degrees with a far-off position, as one part: enclosed in several quadratics.
   const Piece big = arc_piece({3, 5}, {3 + std::sqrt(3.0) / 2, 5.5}, {3, 4});
@@ -194,6 +195,7 @@ TEST(FitAudit, NearlyStraightArcPieceWithinClaim) {
   const BiarcTree tree = build_biarc_tree(prof, 1e-5);
   const TreeAudit t = audit_leaves(biarc_tree_leaves(prof, tree));
   EXPECT_EQ(t.violations, 0) << "leaf " << t.first_problem;
+  EXPECT_EQ(t.unconfirmed, 0) << "leaf " << t.first_problem;
 }
 
 TEST(FitAudit, ScalingByAPowerOfTwoScalesTheBound) {
@@ -228,6 +230,7 @@ TEST(FitAudit, DeformableProfileAtAFractionalTime) {
       const BiarcTree tree = build_biarc_tree(prof, 1e-4);
       const TreeAudit t = audit_leaves(biarc_tree_leaves(prof, tree));
       EXPECT_EQ(t.violations, 0) << s.name << " t=" << time << " leaf " << t.first_problem;
+      EXPECT_EQ(t.unconfirmed, 0) << s.name << " t=" << time << " leaf " << t.first_problem;
       EXPECT_EQ(t.certified, t.leaves) << s.name << " t=" << time << ": " << t.first_problem_reason;
     }
   }
@@ -310,6 +313,7 @@ TEST(FitAudit, RandomPiecesTrees) {
     const std::vector<FitLeaf> leaves = biarc_tree_leaves(prof, tree);
     const TreeAudit t = audit_leaves(leaves, &per);
     EXPECT_EQ(t.violations, 0) << "trial " << trial << " leaf " << t.first_problem;
+    EXPECT_EQ(t.unconfirmed, 0) << "trial " << trial << " leaf " << t.first_problem;
     for (std::size_t i = 0; i < per.size(); ++i) {
       // The fitter proves every leaf of a spiral split (BuildStats::unproven = 0 expected).
       EXPECT_TRUE(std::isfinite(leaves[i].claimed)) << "trial " << trial << " leaf " << i << " unproven";
@@ -386,7 +390,7 @@ TEST(FitAudit, BundledModelsHaveNoViolations) {
           leaves += t.leaves;
           nodes += t.nodes;
           ms += t.time_ms;
-          violations += t.violations;
+          violations += t.violations + t.unconfirmed;
           for (std::size_t i = 0; i < per.size(); ++i) {
             if (!per[i].certified && std::isfinite(lv[i].claimed)) {
               ++uncertified;
