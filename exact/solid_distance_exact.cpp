@@ -627,7 +627,9 @@ class Solver {
     const Job& job = jobs[b.job];
     const Eval ev = bound_box<Di>(b, delem_[job.s_side][job.s_elem], delem_[1 - job.s_side][job.e_elem],
                                   dframes_[job.s_side]);
-    if (doubles_ && (ev.lower > mpfi_below_ || ev.upper - ev.lower > kDoubleSpread * ev.rounding)) return ev;
+    // (A centre value computed exactly says nothing of the box's rounding: MPFI then.)
+    if (doubles_ && (ev.lower > mpfi_below_ || (ev.rounding > 0 && ev.upper - ev.lower > kDoubleSpread * ev.rounding)))
+      return ev;
     ++mpfi_boxes;
     return bound_box<Ia>(b, ielem_[job.s_side][job.s_elem], ielem_[1 - job.s_side][job.e_elem],
                          iframes_[job.s_side]);
