@@ -573,6 +573,8 @@ double s_of(double psi) {
   return std::clamp(1.0 + 0.5 * (std::tan(0.5 * p) + 1.0), 1.0, 2.0);
 }
 
+// Closest circle pairs tried per job for a genuine pair (tube_bound).
+constexpr std::size_t kTubeTargets = 8;
 // A box's double bound is kept when its spread exceeds this many times its
 // centre value's rounding (see Solver::evaluate).
 constexpr double kDoubleSpread = 64.0;
@@ -635,6 +637,7 @@ class Solver {
                          iframes_[job.s_side]);
   }
   // Doubles where they suffice (above), or MPFI on every box (doubles = false).
+  std::size_t circle_pairs() const { return circle_cache_.size(); }
   void set_mpfi_below(double squared_distance, bool doubles) {
     mpfi_below_ = squared_distance;
     doubles_ = doubles;
@@ -762,15 +765,32 @@ class Solver {
     eta = std::sqrt(eta) * 1.0001;
     if (!(eta < 1e-3)) return t;
     delta[0] = (Ia(delta[0]) + Ia(std::sqrt(cw) * 1.0001) + Ia(cr[0]) * Ia(2.0 * eta)).hi();
-    // Elements of one torus share its circle: certify each circle pair once.
+    // Elements of one torus share its circle: certify each circle pair once. A
+    // pair within tol / 64 of one certified before takes that one's result, its
+    // circles moved: a circle (0, 0, z) of radius r moved to (0, 0, z') of
+    // radius r' moves each point by at most |z - z'| + |r - r'| (through the
+    // rigid frame too, up to the centre's rounding, counted again). The arcs of
+    // one sphere, whose computed centres differ in their last bits, made 10000
+    // keys for two 100-arc spheres, each certified apart (minutes).
     const std::array<double, 5> key = {cr[0], cz[0], cr[1], cz[1], static_cast<double>(job.s_side)};
     const ExactCircleResult* hit = nullptr;
-    for (const auto& [k, r] : circle_cache_)
-      if (k == key) hit = &r;
+    double moved[2] = {0.0, 0.0};
+    for (const auto& [k, r] : circle_cache_) {
+      if (k[4] != key[4]) continue;
+      const double m0 = (Ia(std::abs(k[0] - key[0])) + Ia(std::abs(k[1] - key[1]))).hi();
+      const double m1 = (Ia(std::abs(k[2] - key[2])) + Ia(std::abs(k[3] - key[3]))).hi();
+      if (m0 == 0 && m1 == 0) {
+        hit = &r, moved[0] = moved[1] = 0.0;
+        break;
+      }
+      if (!hit && m0 + m1 <= tol / 64) hit = &r, moved[0] = (Ia(m0) * Ia(1.0001) + Ia(std::sqrt(cw) * 1.0001)).hi(), moved[1] = m1;
+    }
     if (!hit) {
       circle_cache_.emplace_back(key, circle3_circle3_distance_exact(circ[0], circ[1]));
       hit = &circle_cache_.back().second;
     }
+    delta[0] = (Ia(delta[0]) + Ia(moved[0])).hi();
+    delta[1] = (Ia(delta[1]) + Ia(moved[1])).hi();
     const ExactCircleResult cd = *hit;
     if (cd.status == ExactStatus::not_certified) return t;
     const double lb = (Ia(cd.lower) - Ia(delta[0]) - Ia(delta[1]) - Ia(R_hi[0]) - Ia(R_hi[1])).lo();
@@ -781,8 +801,13 @@ class Solver {
     // bounded like any box (so it is a proof whatever the doubles did). Every
     // closest pair certified so far is tried: symmetric configurations have
     // several, and the one in this job's sectors may have come from another job.
-    for (const auto& entry : circle_cache_) {
-      const Vec3 pa = entry.second.point_a, pb = entry.second.point_b;
+    // (This job's own circle pair first, then at most kTubeTargets others: a
+    // loop over every entry made the pass quadratic in the jobs.)
+    std::vector<const ExactCircleResult*> targets{hit};
+    for (const auto& entry : circle_cache_)
+      if (&entry.second != hit && targets.size() < kTubeTargets) targets.push_back(&entry.second);
+    for (const ExactCircleResult* target : targets) {
+      const Vec3 pa = target->point_a, pb = target->point_b;
       if (!((pb - pa).norm() > 0)) continue;
       const Vec3 d = (pb - pa).normalized();
       const Vec3 target_s = pa + d * 0.5 * (R_lo[0] + R_hi[0]);
@@ -961,6 +986,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   auto finish = [&]() {
     res.time_ms = thread_cpu_ms() - t0;
     if (solver_ptr) res.mpfi_boxes = solver_ptr->mpfi_boxes;
+    if (solver_ptr) res.circle_pairs = static_cast<int>(solver_ptr->circle_pairs());
     return res;
   };
   std::string why;
@@ -1054,8 +1080,11 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.element_pairs = static_cast<int>(solver.jobs.size());
   res.searched_pairs = res.element_pairs - res.closed_form_pairs;
   const int n_s = solver.coaxial() ? 1 : 4;
+  // A job whose tube floor is already at or above the best genuine pair needs
+  // no box: each would be evaluated only to be dropped (two 200-line spheres:
+  // 4 boxes for each of 40000 jobs).
   for (std::size_t j = 0; j < solver.jobs.size(); ++j)
-    for (int k = 0; k < n_s && !settled[j]; ++k) {
+    for (int k = 0; k < n_s && !settled[j] && floor_sq[j] < ub; ++k) {
       Box bx;
       bx.job = static_cast<int>(j);
       bx.lo[0] = 0.0;

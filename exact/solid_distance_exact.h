@@ -57,6 +57,7 @@ struct ExactSolidResult {
   long mpfi_boxes = 0;           // boxes whose double bound was too loose near contact: re-bounded on MPFI
   int element_pairs = 0;         // pairs (element of a, element of b): the leaves of the search
   int closed_form_pairs = 0;     // pairs settled in closed form (tube against tube: circle distance)
+  int circle_pairs = 0;          // circle pairs certified for those tube bounds (near-equal circles share one)
   int searched_pairs = 0;        // pairs that needed branch and bound
   double time_ms = 0.0;          // per-thread CPU time of the query
 };

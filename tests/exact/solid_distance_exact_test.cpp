@@ -246,6 +246,39 @@ TEST(SolidDistanceExact, RationalBezierSpheresByBoxes) {
     }
 }
 
+// Two unit spheres of 40 arcs each (points on the unit circle: the arcs'
+// computed centres differ in their last bits). The tube bounds certified one
+// circle pair per pair of distinct keys (1600) and tried every certified pair
+// on every job: two 100-arc spheres ran 5 minutes. Near-equal circles now share
+// one certificate, moved by their difference.
+TEST(SolidDistanceExact, ManyArcSpheresShareTheirCircles) {
+  auto sphere_of_arcs = [](int n) {
+    Profile p;
+    auto at = [&](int i2) {  // the point at angle pi * i2 / (2 n), from the south pole
+      const double a = M_PI * i2 / (2.0 * n);
+      return Vec2(i2 == 0 || i2 == 2 * n ? 0.0 : std::sin(a), -std::cos(a));
+    };
+    for (int i = 0; i < n; ++i) p.pieces.push_back(arc(at(2 * i), at(2 * i + 1), at(2 * i + 2)));
+    return p;
+  };
+  const Profile s = sphere_of_arcs(40);
+  for (double x : {2.5, 2.001}) {
+    SCOPED_TRACE(x);
+    const Pose pb = pose({x, 0.1, 0.05}, {0.9, 0.1, 0.3, 0.2});
+    const double e = std::sqrt(x * x + 0.0125) - 2.0;
+    ExactSolidOptions o;
+    o.max_cpu_s = 0;
+    const ExactSolidResult r = solid_distance_exact(s, pose({0, 0, 0}), s, pb, o);
+    std::printf("40-arc spheres at %g: [%.17g, %.17g] boxes %ld, %d circle pairs certified, %.1f ms\n", x, r.lower,
+                r.upper, r.boxes, r.circle_pairs, r.time_ms);
+    ASSERT_TRUE(r.certified) << r.reason;
+    EXPECT_TRUE(r.width_reached) << r.reason;
+    EXPECT_LE(r.lower, e + 1e-14);  // the arcs' points are on the unit circle to ~1e-16
+    EXPECT_GE(r.upper, e - 1e-14);
+    EXPECT_LE(r.circle_pairs, 4);
+  }
+}
+
 TEST(SolidDistanceExact, TwoSpheres) {
   const double e = std::sqrt(5.25) - 1.5;  // |c| - r1 - r2
   check(sphere(1), pose({0, 0, 0}), sphere(0.5), pose({2, 1, 0.5}, {0.9, 0.1, 0.3, 0.2}), e, "two spheres");
