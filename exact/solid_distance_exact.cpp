@@ -1060,7 +1060,18 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   floor_sq.assign(solver.jobs.size(), 0.0);
   std::vector<char> settled(solver.jobs.size(), 0);
   std::vector<double> tube_lower(solver.jobs.size(), -1.0);
+  // The CPU budget and stop requests cover this pass too (each job may certify
+  // a circle pair); past either, the remaining jobs get no tube bound, every
+  // job still gets its boxes (so the bracket stays proven), and the search
+  // below ends at once.
+  const char* ended = nullptr;  // the time budget or a stop request, when either ended the work
+  auto out_of_time = [&] {
+    if (options.max_cpu_s > 0 && thread_cpu_ms() - t0 > 1e3 * options.max_cpu_s) ended = "CPU time budget";
+    if (options.stop && options.stop()) ended = "stop request";
+    return ended != nullptr;
+  };
   for (std::size_t j = 0; j < solver.jobs.size() && options.use_structure; ++j) {
+    if (j % 16 == 15 && out_of_time()) break;
     const Solver::Tube t = solver.tube_bound(static_cast<int>(j), tol);
     if (!t.ok) continue;
     tube_lower[j] = t.lower;
@@ -1117,11 +1128,10 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   };
   long pops = 0;
   bool budget_hit = false;
-  const char* ended = nullptr;  // the time budget or a stop request, when either ended the search
   const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(options.progress_interval_s));
   auto next_progress = wall0 + interval;
-  while (!queue.empty()) {
+  while (!queue.empty() && !ended) {
     const Box top = queue.top();
     if (top.lower >= ub) {  // every remaining box is at least as far
       while (!queue.empty()) queue.pop();
@@ -1132,11 +1142,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
       budget_hit = true;
       break;
     }
-    if (pops % 256 == 255) {
-      if (options.max_cpu_s > 0 && thread_cpu_ms() - t0 > 1e3 * options.max_cpu_s) ended = "CPU time budget";
-      if (options.stop && options.stop()) ended = "stop request";
-      if (ended) break;
-    }
+    if (pops % 256 == 255 && out_of_time()) break;
     queue.pop();
     ++pops;
     if (options.progress && pops % 256 == 0) {

@@ -277,6 +277,22 @@ TEST(SolidDistanceExact, ManyArcSpheresShareTheirCircles) {
     EXPECT_GE(r.upper, e - 1e-14);
     EXPECT_LE(r.circle_pairs, 4);
   }
+  // A stop request (or the CPU budget) also ends the tube pass, which had no
+  // check: the jobs it did not reach still get their boxes, so the bracket
+  // holds, and the search does not start.
+  ExactSolidOptions o;
+  o.stop = [] { return true; };
+  const ExactSolidResult r = solid_distance_exact(s, pose({0, 0, 0}), s, pose({2.5, 0.1, 0.05}, {0.9, 0.1, 0.3, 0.2}), o);
+  const double e = std::sqrt(2.5 * 2.5 + 0.0125) - 2.0;
+  std::printf("stopped at once: [%.17g, %.17g], %d of %d pairs settled, %ld boxes\n", r.lower, r.upper,
+              r.closed_form_pairs, r.element_pairs, r.boxes);
+  ASSERT_TRUE(r.certified);
+  EXPECT_NE(r.reason.find("stop request"), std::string::npos) << r.reason;
+  EXPECT_LE(r.lower, e + 1e-14);
+  EXPECT_GE(r.upper, e - 1e-14);
+  EXPECT_TRUE(std::isfinite(r.upper));
+  EXPECT_LE(r.closed_form_pairs, 16);  // the tube pass stopped within its first 16 jobs
+  EXPECT_LE(r.boxes, 4L * r.element_pairs);  // initial boxes only
 }
 
 TEST(SolidDistanceExact, TwoSpheres) {
