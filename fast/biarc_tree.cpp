@@ -150,7 +150,7 @@ struct Builder {
 
   void build_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
                    const SpanEnds& e, int depth) {
-    const double um = 0.5 * (u0 + u1);
+    const double um = split_parameter(piece, u0, u1);
     SpanEnds left, right;
     split_span(piece, u0, u1, e, &left, &right);
     Capsule cap;
@@ -195,7 +195,7 @@ struct Builder {
   // The two halves of a curve span (ends `left`, `right`: split_span's); returns the first child.
   std::int32_t expand_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
                             const SpanEnds& left, const SpanEnds& right, int depth) {
-    const double um = 0.5 * (u0 + u1);
+    const double um = split_parameter(piece, u0, u1);
     const std::int32_t c = alloc_pair();
     link(node, c);
     build_curve(c, piece, piece_index, u0, um, left, depth + 1);
@@ -257,10 +257,22 @@ struct Builder {
 
 }  // namespace
 
+double split_parameter(const Piece& piece, double u0, double u1) {
+  const double um = 0.5 * (u0 + u1);
+  if (piece.kind != PieceKind::bspline) return um;
+  const double near = 1e-6 * (u1 - u0);
+  const std::vector<double>& t = piece.knots;
+  const auto first = std::upper_bound(t.begin(), t.end(), u0);  // the first knot above u0
+  if (first != t.end() && *first < u1 && *first - u0 < near) return *first;
+  const auto last = std::lower_bound(t.begin(), t.end(), u1);  // after the last knot below u1
+  if (last != t.begin() && *(last - 1) > u0 && u1 - *(last - 1) < near) return *(last - 1);
+  return um;
+}
+
 void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right) {
   *left = e;
   *right = e;
-  left->p1 = piece_tangent(piece, 0.5 * (u0 + u1), +1, &left->t1, &left->k1);
+  left->p1 = piece_tangent(piece, split_parameter(piece, u0, u1), +1, &left->t1, &left->k1);
   right->p0 = left->p1;
   right->t0 = left->t1;
   right->k0 = left->k1;

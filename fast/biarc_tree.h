@@ -91,7 +91,14 @@ struct BuildStats {
   int depth_limited = 0;   // leaves that hit the depth limit before reaching eps
 };
 
-// Hermite data of the two halves of a span at its mid parameter, the split of
+// The parameter at which a curve span is halved: its middle, unless a
+// B-spline knot lies within 1e-6 of the span of one of its ends. Halving could
+// not reach such a knot within the depth limit (knots [0,0,0,0,1e-20,1,1,1,1]:
+// the curve travels a finite way within [0, 1e-20], and the leaf [0, 6.9e-13]
+// claimed 0.5), so the span is cut there.
+double split_parameter(const Piece& piece, double u0, double u1);
+
+// Hermite data of the two halves of a span at split_parameter, the split of
 // Algorithm 1 (also used to refine leaves during a distance query).
 void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right);
 

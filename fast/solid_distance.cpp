@@ -193,7 +193,7 @@ struct Solid {
   void refine(const Part& p, Part* c0, Part* c1) {
     const BiarcFit pf = fit(p);
     const Piece& piece = s.profile->pieces[pf.piece];
-    const double u0 = pf.u0, u1 = pf.u1, um = 0.5 * (u0 + u1);
+    const double u0 = pf.u0, u1 = pf.u1, um = split_parameter(piece, u0, u1);
     SpanEnds e;
     e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
     e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);

@@ -276,6 +276,24 @@ TEST(SolidDistanceContainment, APoleNearTheOtherSurfaceGivesWayToAnotherPoint) {
   }
 }
 
+// A B-spline knot span of 1e-20 at the start (cases/regressions/
+// bspline_knot_span_1e-20.json): halving could not reach the knot, and a leaf
+// over [0, 6.9e-13] claimed 0.5, so the query could not converge ([0, 1.001]).
+// Spans are cut at such a knot now. Certified [0.99999999867, 1.00000000017].
+TEST(SolidDistanceRegression, KnotSpanOf1e20IsCutAtTheKnot) {
+  for (double eps : {1e-4, 1e-5}) {
+    SCOPED_TRACE(eps);
+    Loaded L(source_path("cases/regressions/bspline_knot_span_1e-20.json"), eps);
+    const BuildStats& st = L.m.shapes[0]->stats;
+    EXPECT_LE(st.max_error, eps);
+    EXPECT_EQ(st.unproven, 0);
+    const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{1e-6});
+    EXPECT_TRUE(r.converged) << describe(r);
+    EXPECT_LE(r.lower, 1.00000000017) << describe(r);
+    EXPECT_GE(r.upper, 0.99999999867) << describe(r);
+  }
+}
+
 TEST(SolidDistanceClosedForm, AllFilesPresent) {
   // The brief's list; a renamed file must not silently drop its test.
   for (const char* f : {"curved_pieces", "two_spheres", "sphere_can", "coaxial_stacked", "stacked_coins", "parallel_cylinders",
