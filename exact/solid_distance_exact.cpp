@@ -244,27 +244,44 @@ I hull_of(const I* c, std::size_t n) {
   for (std::size_t j = 1; j < n; ++j) lo = std::min(lo, c[j].lo()), hi = std::max(hi, c[j].hi());
   return iv<I>(lo, hi);
 }
-// point_deriv over the whole parameter interval [u0, u1], from the restricted
-// coefficients' hulls (convex hull property; r and z from the projected control
-// points when every weight there is positive).
+// An element's curve over [u0, u1]: its x, y, w Bernstein coefficients
+// restricted to it and, where every weight there is proven positive, the
+// projected control points (x / w, y / w), whose hull holds that part of the
+// curve. n = 0 when nothing is restricted (a degenerate interval).
 template <class I>
-void point_deriv_range(const ElemT<I>& e, double u0, double u1, I& r, I& z, I& dr, I& dz) {
-  const std::size_t n = e.x.size(), m = e.dx.size();
-  if (n > kMaxCoeffs || e.y.size() != n || e.w.size() != n || e.dy.size() != m || e.dw.size() != m || !(u0 < u1) || u0 < 0 ||
-      u1 > 1)
-    return point_deriv(e, iv<I>(u0, u1), r, z, dr, dz);
-  I cx[kMaxCoeffs], cy[kMaxCoeffs], cw[kMaxCoeffs];
-  restrict_coeffs(e.x, u0, u1, cx);
-  restrict_coeffs(e.y, u0, u1, cy);
-  restrict_coeffs(e.w, u0, u1, cw);
-  const I x = hull_of(cx, n), y = hull_of(cy, n), w = hull_of(cw, n);
+struct CurvePart {
+  std::size_t n = 0;
+  bool projected = false;
+  I x[kMaxCoeffs], y[kMaxCoeffs], w[kMaxCoeffs], px[kMaxCoeffs], py[kMaxCoeffs];
+};
+template <class I>
+void curve_part(const ElemT<I>& e, double u0, double u1, CurvePart<I>& out) {
+  const std::size_t n = e.x.size();
+  out.n = 0;
+  if (n > kMaxCoeffs || e.y.size() != n || e.w.size() != n || !(u0 < u1) || u0 < 0 || u1 > 1) return;
+  restrict_coeffs(e.x, u0, u1, out.x);
+  restrict_coeffs(e.y, u0, u1, out.y);
+  restrict_coeffs(e.w, u0, u1, out.w);
+  out.n = n;
+  out.projected = true;
+  for (std::size_t j = 0; j < n && out.projected; ++j) {
+    out.projected = out.w[j].pos();
+    if (out.projected) out.px[j] = out.x[j] / out.w[j], out.py[j] = out.y[j] / out.w[j];
+  }
+}
+// point_deriv over the whole parameter interval [u0, u1] of `part` (curve_part
+// of e over it), from the restricted coefficients' hulls (convex hull
+// property; r and z also from the projected control points).
+template <class I>
+void point_deriv_range(const ElemT<I>& e, double u0, double u1, const CurvePart<I>& part, I& r, I& z, I& dr, I& dz) {
+  const std::size_t n = part.n, m = e.dx.size();
+  if (n == 0 || e.dy.size() != m || e.dw.size() != m) return point_deriv(e, iv<I>(u0, u1), r, z, dr, dz);
+  const I x = hull_of(part.x, n), y = hull_of(part.y, n), w = hull_of(part.w, n);
   r = x / w;
   z = y / w;
-  if (w.pos()) {
-    I px[kMaxCoeffs], py[kMaxCoeffs];
-    for (std::size_t j = 0; j < n; ++j) px[j] = cx[j] / cw[j], py[j] = cy[j] / cw[j];
-    r = meet(r, hull_of(px, n));
-    z = meet(z, hull_of(py, n));
+  if (part.projected) {
+    r = meet(r, hull_of(part.px, n));
+    z = meet(z, hull_of(part.py, n));
   }
   if (m == 0) {
     dr = dz = I(0.0);
@@ -316,8 +333,8 @@ struct Eval {
   int split = -1;                     // dimension to halve, -1 when none can be
 };
 
-// E's curve over [v0, v1] lies in the convex hull of its restricted control
-// points (projected; positive weights), so within delta of their chord Q0-Qn
+// E's curve over [v0, v1] (`part`) lies in the convex hull of its projected
+// control points (positive weights), so within delta of their chord Q0-Qn
 // (the delta-neighbourhood of a segment is convex), delta the largest distance
 // of a control point from the chord. Then the distance to that part of the curve
 // is at least the distance to the chord less delta: E's extent in v costs
@@ -327,19 +344,11 @@ struct Eval {
 // Bezier solids at gap 1e-3). False when the chord is degenerate or a weight's
 // sign is not proven; the caller then bounds g itself.
 template <class I, class SegmentLower, class AddCost>
-bool chord_bound(double v0, double v1, const ElemT<I>& E, SegmentLower& segment_lower, AddCost& add_cost,
-                 double dist_c, Eval& ev) {
-  const std::size_t n = E.x.size();
-  if (n > kMaxCoeffs || E.y.size() != n || E.w.size() != n || !(v0 < v1)) return false;
-  I cx[kMaxCoeffs], cy[kMaxCoeffs], cw[kMaxCoeffs], qx[kMaxCoeffs], qy[kMaxCoeffs];
-  restrict_coeffs(E.x, v0, v1, cx);
-  restrict_coeffs(E.y, v0, v1, cy);
-  restrict_coeffs(E.w, v0, v1, cw);
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!cw[j].pos()) return false;
-    qx[j] = cx[j] / cw[j];
-    qy[j] = cy[j] / cw[j];
-  }
+bool chord_bound(const CurvePart<I>& part, SegmentLower& segment_lower, AddCost& add_cost, double dist_c, Eval& ev) {
+  const std::size_t n = part.n;
+  if (n == 0 || !part.projected) return false;
+  const I* qx = part.px;
+  const I* qy = part.py;
   const I ex = qx[n - 1] - qx[0], ey = qy[n - 1] - qy[0];
   const I e2 = ex * ex + ey * ey;
   if (!e2.pos()) return false;
@@ -373,7 +382,11 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
   }
   // Over the box: S's point, its derivatives in u and s, seen in E's frame.
   I r, z, dr, dz;
-  point_deriv_range(S, b.lo[0], b.hi[0], r, z, dr, dz);
+  {
+    CurvePart<I> part;
+    curve_part(S, b.lo[0], b.hi[0], part);
+    point_deriv_range(S, b.lo[0], b.hi[0], part, r, z, dr, dz);
+  }
   I cs, sn, dpsi;
   rot_cs(b.lo[1], b.hi[1], cs, sn, &dpsi);
   I y[3], yu[3], ys[3];
@@ -516,12 +529,14 @@ Eval bound_box(const Box& b, const ElemT<I>& S, const ElemT<I>& E, const FrameT<
     // costs): the chord's is the tight one over wide parts of E; over a part so
     // short that its control points' rounding is a fair share of the chord, the
     // chord's direction is lost in it, and g's form is the tight one.
+    CurvePart<I> part;  // E over [v0, v1], restricted once for both
+    curve_part(E, b.lo[2], b.hi[2], part);
     Eval ch = ev;
-    const bool chord = chord_bound(b.lo[2], b.hi[2], E, segment_lower, add_cost, std::sqrt(g_c.hi()), ch);
+    const bool chord = chord_bound(part, segment_lower, add_cost, std::sqrt(g_c.hi()), ch);
     const double chord_cost[3] = {cost[0], cost[1], cost[2]};
     cost[0] = cost[1] = cost[2] = 0.0;
     I re, ze, dre, dze;
-    point_deriv_range(E, b.lo[2], b.hi[2], re, ze, dre, dze);
+    point_deriv_range(E, b.lo[2], b.hi[2], part, re, ze, dre, dze);
     const I dR = rho - re, dZ = zeta - ze;
     const I two(2.0);
     const I gv = two * (dR * dre + dZ * dze);
