@@ -152,7 +152,7 @@ struct Builder {
                    const SpanEnds& e, int depth) {
     const double um = split_parameter(piece, u0, u1);
     SpanEnds left, right;
-    split_span(piece, u0, u1, e, &left, &right);
+    split_span(piece, um, e, &left, &right);
     Capsule cap;
     BiarcFit f = fit_curve_span(piece, piece_index, u0, u1, e, left.p1, slack, &cap, eps);
     f.depth = static_cast<std::uint8_t>(depth);
@@ -184,7 +184,7 @@ struct Builder {
       return;
     }
     // Unproven inner nodes are built eagerly even in a lazy tree: their capsule is their children's union.
-    const std::int32_t c = expand_curve(node, piece, piece_index, u0, u1, left, right, depth);
+    const std::int32_t c = expand_curve(node, piece, piece_index, u0, um, u1, left, right, depth);
     if (proven) {
       set_capsule(node, cap);
     } else {
@@ -192,10 +192,9 @@ struct Builder {
     }
   }
 
-  // The two halves of a curve span (ends `left`, `right`: split_span's); returns the first child.
-  std::int32_t expand_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double u1,
-                            const SpanEnds& left, const SpanEnds& right, int depth) {
-    const double um = split_parameter(piece, u0, u1);
+  // The two halves of a curve span, split at um (ends `left`, `right`: split_span's); returns the first child.
+  std::int32_t expand_curve(std::int32_t node, const Piece& piece, std::int32_t piece_index, double u0, double um,
+                            double u1, const SpanEnds& left, const SpanEnds& right, int depth) {
     const std::int32_t c = alloc_pair();
     link(node, c);
     build_curve(c, piece, piece_index, u0, um, left, depth + 1);
@@ -207,9 +206,10 @@ struct Builder {
   std::int32_t expand(std::int32_t node, const SpiralSpan& s, int depth) {
     if (s.kind == SpanKind::curve) {
       const Piece& piece = profile.pieces[s.piece];
+      const double um = split_parameter(piece, s.u0, s.u1);
       SpanEnds left, right;
-      split_span(piece, s.u0, s.u1, s.ends, &left, &right);
-      return expand_curve(node, piece, s.piece, s.u0, s.u1, left, right, depth);
+      split_span(piece, um, s.ends, &left, &right);
+      return expand_curve(node, piece, s.piece, s.u0, um, s.u1, left, right, depth);
     }
     return expand_exact(node, s);
   }
@@ -269,10 +269,10 @@ double split_parameter(const Piece& piece, double u0, double u1) {
   return um;
 }
 
-void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right) {
+void split_span(const Piece& piece, double um, const SpanEnds& e, SpanEnds* left, SpanEnds* right) {
   *left = e;
   *right = e;
-  left->p1 = piece_tangent(piece, split_parameter(piece, u0, u1), +1, &left->t1, &left->k1);
+  left->p1 = piece_tangent(piece, um, +1, &left->t1, &left->k1);
   right->p0 = left->p1;
   right->t0 = left->t1;
   right->k0 = left->k1;

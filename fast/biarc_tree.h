@@ -98,9 +98,9 @@ struct BuildStats {
 // claimed 0.5), so the span is cut there.
 double split_parameter(const Piece& piece, double u0, double u1);
 
-// Hermite data of the two halves of a span at split_parameter, the split of
-// Algorithm 1 (also used to refine leaves during a distance query).
-void split_span(const Piece& piece, double u0, double u1, const SpanEnds& e, SpanEnds* left, SpanEnds* right);
+// Hermite data of the two halves of a span (ends e) at um = split_parameter,
+// the split of Algorithm 1 (also used to refine leaves during a distance query).
+void split_span(const Piece& piece, double um, const SpanEnds& e, SpanEnds* left, SpanEnds* right);
 
 // The biarc fit of curve span piece[u0, u1] (end data e, `mid` the curve's
 // point at the mid parameter), its proven eps (lens width + slack; +inf when

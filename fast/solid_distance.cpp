@@ -198,7 +198,7 @@ struct Solid {
     e.p0 = piece_tangent(piece, u0, +1, &e.t0, &e.k0);
     e.p1 = piece_tangent(piece, u1, -1, &e.t1, &e.k1);
     SpanEnds left, right;
-    split_span(piece, u0, u1, e, &left, &right);
+    split_span(piece, um, e, &left, &right);
     Part* out[2] = {c0, c1};
     const SpanEnds* ends[2] = {&left, &right};
     const double us[3] = {u0, um, u1};

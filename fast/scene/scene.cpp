@@ -201,8 +201,8 @@ Scene::Scene(const Case& c, const SceneOptions& options)
     model_.shapes.push_back(std::move(own));
     runs_.push_back(1);
   }
-  // No tree is built until a query needs it (build_stale): boxes come from a
-  // cylinder around each shape's control points until then.
+  // No tree is built until a query needs it (build_stale): boxes come from
+  // capsules around each shape's control points until then (hull_bounds).
   stale_.assign(model_.shapes.size(), 1);
   bounds_.resize(model_.shapes.size());
   reach_.resize(model_.shapes.size());

@@ -129,7 +129,7 @@ class Scene {
   std::vector<SolidDef> solids_;        // the case's, for shapes whose time runs
   // Per shape: its tree is not built for its profile (none yet, or a blend of
   // this frame): built when a narrow-phase query first needs it; boxes
-  // meanwhile come from a cylinder around its control points.
+  // meanwhile come from capsules around its control points (hull_bounds).
   mutable std::vector<char> stale_;
   std::vector<char> runs_;  // per shape: the shape of an instance whose keyframe time runs
   CaseModel model_;
