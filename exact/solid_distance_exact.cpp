@@ -651,8 +651,8 @@ class Solver {
     return bound_box<Ia>(b, ielem_[job.s_side][job.s_elem], ielem_[1 - job.s_side][job.e_elem],
                          iframes_[job.s_side]);
   }
+  std::size_t circle_pairs() const { return circle_cache_.size(); }  // certified for the tube bounds
   // Doubles where they suffice (above), or MPFI on every box (doubles = false).
-  std::size_t circle_pairs() const { return circle_cache_.size(); }
   void set_mpfi_below(double squared_distance, bool doubles) {
     mpfi_below_ = squared_distance;
     doubles_ = doubles;
@@ -798,7 +798,11 @@ class Solver {
         hit = &r, moved[0] = moved[1] = 0.0;
         break;
       }
-      if (!hit && m0 + m1 <= tol / 64) hit = &r, moved[0] = (Ia(m0) * Ia(1.0001) + Ia(std::sqrt(cw) * 1.0001)).hi(), moved[1] = m1;
+      if (!hit && m0 + m1 <= tol / 64) {
+        hit = &r;
+        moved[0] = (Ia(m0) * Ia(1.0001) + Ia(std::sqrt(cw) * 1.0001)).hi();
+        moved[1] = m1;
+      }
     }
     if (!hit) {
       circle_cache_.emplace_back(key, circle3_circle3_distance_exact(circ[0], circ[1]));
@@ -1106,11 +1110,8 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   res.element_pairs = static_cast<int>(solver.jobs.size());
   res.searched_pairs = res.element_pairs - res.closed_form_pairs;
   const int n_s = solver.coaxial() ? 1 : 4;
-  // A job whose tube floor is already at or above the best genuine pair needs
-  // no box: each would be evaluated only to be dropped (two 200-line spheres:
-  // 4 boxes for each of 40000 jobs).
   for (std::size_t j = 0; j < solver.jobs.size(); ++j)
-    for (int k = 0; k < n_s && !settled[j] && floor_sq[j] < ub; ++k) {
+    for (int k = 0; k < n_s && !settled[j]; ++k) {
       Box bx;
       bx.job = static_cast<int>(j);
       bx.lo[0] = 0.0;
