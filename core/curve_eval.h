@@ -49,4 +49,10 @@ std::vector<BezierSegment> piece_bezier_segments(const Piece& piece);
 // exact for polynomial and rational Bezier segments of bezier and bspline pieces.
 std::pair<BezierSegment, BezierSegment> split_segment(const BezierSegment& s, double t);
 
+// The largest distance of control points from the chord of the first and last
+// (the segment between them). A rational Bezier segment with positive weights
+// lies in the hull of its control points, so within this of its chord; so do
+// consecutive segments whose control points are listed together.
+double chord_flatness(const std::vector<Vec2>& points);
+
 }  // namespace revdist

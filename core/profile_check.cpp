@@ -98,12 +98,6 @@ double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Ve
 // Max distance of the control points from the chord: the segment lies in their hull, so
 // within this of the chord; and since it runs from one chord end to the other inside
 // that band, every chord point is within it of the segment too (Hausdorff bound).
-double flatness(const BezierSegment& s) {
-  double e = 0;
-  for (const Vec2& p : s.points) e = std::max(e, point_segment_distance(p, s.points.front(), s.points.back()));
-  return e;
-}
-
 double polygon_length(const BezierSegment& s) {
   double l = 0;
   for (std::size_t i = 1; i < s.points.size(); ++i) l += (s.points[i] - s.points[i - 1]).norm();
@@ -158,7 +152,7 @@ void cut_injective(const BezierSegment& s, std::size_t piece, double tol, int de
 // limit); *at gets a point near the contact.
 bool near(const BezierSegment& a, const BezierSegment& b, double tol, int depth, Vec2* at) {
   if (box_distance(box_of(a), box_of(b)) > tol) return false;
-  const double ea = flatness(a), eb = flatness(b);
+  const double ea = chord_flatness(a.points), eb = chord_flatness(b.points);
   const double d = segment_distance(a.points.front(), a.points.back(), b.points.front(), b.points.back());
   if (d - ea - eb > tol) return false;
   if (d + ea + eb <= tol || depth == 0) {

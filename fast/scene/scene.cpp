@@ -334,15 +334,8 @@ void Scene::hull_bounds(std::size_t shape) {
   b.clear();
   double reach = 0.0, coord = 0.0;
   for (const std::vector<Vec2>& q : parts) {
-    const Vec2 a = q.front(), e = q.back() - a;
-    const double e2 = e.squaredNorm();
-    double sag = 0.0;
-    for (const Vec2& p : q) {
-      const double t = e2 > 0 ? std::clamp((p - a).dot(e) / e2, 0.0, 1.0) : 0.0;
-      sag = std::max(sag, (p - a - t * e).norm());
-      coord = std::max(coord, p.cwiseAbs().maxCoeff());
-    }
-    b.push_back({a, q.back(), sag});
+    for (const Vec2& p : q) coord = std::max(coord, p.cwiseAbs().maxCoeff());
+    b.push_back({q.front(), q.back(), chord_flatness(q)});
   }
   // Rounding of the split points and distances: a few ulps of the coordinates.
   const double pad = 64 * DBL_EPSILON * coord;
