@@ -334,7 +334,7 @@ void answer_all(const Case& c, const Engine& engine, const Options& o, const cha
   check_stdout();
   if (unbracketed > 0)
     throw RunError(std::to_string(unbracketed) + " of " + std::to_string(n) +
-                             " queries ended without a finite bracket (see their reason)");
+                   " queries ended without a finite bracket (see their reason)");
 }
 
 // eps and tol are absolute lengths. Unset, they scale with the model (core/case_scale.h);
