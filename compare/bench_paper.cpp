@@ -100,7 +100,8 @@ std::vector<double> time_rebuilds(const Profile& p, double eps, int reps) {
 
 struct QueryTimes {
   std::vector<double> us;
-  std::vector<double> overlap_us;  // frames planned to overlap
+  int planned_overlaps = 0;  // frames planned to overlap (gap target < 0)
+  std::vector<double> overlap_us;  // frames that overlap (PairMotion::overlapping)
   std::vector<double> proven_overlap_us;  // frames answered as a proven overlap
   std::vector<SolidDistanceResult> sample;  // results at the certified sample frames
   double node_pairs = 0, leaf_pairs = 0, patch_pairs = 0, quick_pairs = 0, local_pairs = 0, refined = 0;
@@ -116,7 +117,8 @@ void set_counters(BenchRecord& r, const QueryTimes& q) {
   r.node_pairs = q.node_pairs / n, r.leaf_pairs = q.leaf_pairs / n, r.patch_pairs = q.patch_pairs / n;
   r.quick_pairs = q.quick_pairs / n, r.local_pairs = q.local_pairs / n, r.refined = q.refined / n;
   r.overlaps = q.overlaps, r.unconverged = q.unconverged;
-  r.planned_overlaps = static_cast<int>(q.overlap_us.size());
+  r.planned_overlaps = q.planned_overlaps;
+  r.overlapping_frames = static_cast<int>(q.overlap_us.size());
   r.overlap_median_us = nearest_rank_percentile(q.overlap_us, 0.5);
   r.overlap_p99_us = nearest_rank_percentile(q.overlap_us, 0.99);
   r.proven_overlap_p99_us = nearest_rank_percentile(q.proven_overlap_us, 0.99);
@@ -130,9 +132,10 @@ void set_coherent(BenchRecord& r, const QueryTimes& q) {
 
 // Times solid_distance on every frame, one call per frame, same poses as FCL;
 // coherent: each call warm-started from the previous frame's answer.
+// overlapping: the frames that overlap (empty: not known).
 QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::function<PosedSolid(int)>& a,
                         const std::function<PosedSolid(int)>& b, double tol, const std::vector<int>& sample,
-                        bool coherent = false) {
+                        const std::vector<char>& overlapping, bool coherent = false) {
   QueryTimes q;
   DistanceOptions o;
   o.tol = tol;
@@ -145,7 +148,8 @@ QueryTimes time_queries(const std::vector<MotionFrame>& frames, const std::funct
     const SolidDistanceResult r = solid_distance(A, B, o, warm);
     if (coherent) warm = warm_start_of(r, A, B);
     q.us.push_back(thread_cpu_us() - c0);
-    if (frames[j].target < 0) q.overlap_us.push_back(q.us.back());
+    q.planned_overlaps += frames[j].target < 0;
+    if (!overlapping.empty() && overlapping[j]) q.overlap_us.push_back(q.us.back());
     if (r.overlap) q.proven_overlap_us.push_back(q.us.back());
     q.node_pairs += r.stats.node_pairs, q.leaf_pairs += r.stats.leaf_pairs, q.patch_pairs += r.stats.patch_pairs;
     q.quick_pairs += r.stats.quick_pairs, q.local_pairs += r.stats.local_pairs, q.refined += r.stats.refined;
@@ -295,6 +299,7 @@ class Runner {
     setup_eps_ = std::max(fine_eps_, 1e-4 * extent);
     make_motions();
     for (double eps : o_.eps) run_eps(eps, out.records);
+    sweep(out.records);
     out.cpu_s = (thread_cpu_us() - c0) * 1e-6;
     return out;
   }
@@ -306,6 +311,7 @@ class Runner {
     std::vector<MotionFrame> frames;
     std::vector<int> sample;
     std::vector<Certified> exact;
+    std::vector<char> overlapping;  // per frame: the solids overlap (or touch); motion pairs only
   };
 
   void say(const std::string& s) const {
@@ -361,7 +367,7 @@ class Runner {
     std::uint64_t seed = o_.seed;
     for (std::size_t i = 0; i < in_.statics.size(); ++i) {
       for (std::size_t j = i; j < in_.statics.size(); ++j) {
-        PairMotion pm{i, j, in_.statics[i].name + "-" + in_.statics[j].name, {}, {}, {}};
+        PairMotion pm{i, j, in_.statics[i].name + "-" + in_.statics[j].name, {}, {}, {}, {}};
         say("motion frames: " + pm.name);
         mo.seed = seed++;
         pm.frames = frames_of([&] {
@@ -370,6 +376,7 @@ class Runner {
         });
         certify(pm, [this, i](int) { return profile_at(in_.statics[i].def, 0.0); },
                 [this, j](int) { return profile_at(in_.statics[j].def, 0.0); });
+        classify(pm);
         motions_.push_back(std::move(pm));
       }
     }
@@ -379,7 +386,7 @@ class Runner {
       if (!from_file) m = std::make_unique<Morph>(build_morph(def, setup_eps_, o_.frames));
       const Morph* mp = m.get();
       for (std::size_t i = 0; i < in_.statics.size(); ++i) {
-        PairMotion pm{i, d, in_.statics[i].name + "-" + in_.deformables[d].name, {}, {}, {}};
+        PairMotion pm{i, d, in_.statics[i].name + "-" + in_.deformables[d].name, {}, {}, {}, {}};
         say("motion frames: " + pm.name);
         mo.seed = seed++;
         pm.frames = frames_of([&] {
@@ -491,6 +498,29 @@ class Runner {
     }
   }
 
+  // Which frames overlap: the fast engine at tol 1e-9 x size on the finest
+  // trees proves an overlap, or brackets the distance in [0, tol] (touching:
+  // counted as overlapping, the harder side of the target). A frame planned
+  // to overlap may not: see BenchRecord::planned_overlaps.
+  void classify(PairMotion& pm) {
+    say("overlap reference: " + pm.name);
+    const Built& a = reference(pm.a);
+    const Built& b = reference(pm.b);
+    DistanceOptions o;
+    o.tol = 1e-9 * std::max(profile_extent(a.profile), profile_extent(b.profile));
+    for (const MotionFrame& f : pm.frames) {
+      PosedSolid A = a.posed(), B = b.posed();
+      A.R = f.R_WA, A.t = f.t_WA, B.R = f.R_WB, B.t = f.t_WB;
+      const SolidDistanceResult r = solid_distance(A, B, o);
+      pm.overlapping.push_back(r.overlap || r.lower <= 0);
+    }
+  }
+  // Static solid i's tree at the finest eps (the overlap reference's), built once.
+  const Built& reference(std::size_t i) {
+    while (reference_.size() <= i) reference_.push_back(build(profile_at(in_.statics[reference_.size()].def, 0.0), fine_eps_));
+    return *reference_[i];
+  }
+
   // The certified sample used the quaternion's rotation: time every side at that same pose.
   static void snap_to_quaternions(std::vector<MotionFrame>& frames) {
     for (MotionFrame& f : frames) {
@@ -556,7 +586,7 @@ class Runner {
         const Built* ta = trees[pm.a].get();
         const QueryTimes q = time_queries(
             pm.frames, [ta](int) { return ta->posed(); }, [&m](int f) { return m.frames[f]->posed(); }, 2 * eps,
-            pm.sample);
+            pm.sample, {});
         BenchRecord dr;
         dr.experiment = "deform", dr.pair = pm.name, dr.eps = eps, dr.tol = 2 * eps;
         set_counters(dr, q);
@@ -577,9 +607,9 @@ class Runner {
       const Built* tb = trees[pm.b].get();
       auto fa = [ta](int) { return ta->posed(); };
       auto fb = [tb](int) { return tb->posed(); };
-      const QueryTimes q = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample);
-      const QueryTimes qp = time_queries(pm.frames, fa, fb, o_.proven_tol, pm.sample);
-      const QueryTimes qc = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample, true);
+      const QueryTimes q = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample, pm.overlapping);
+      const QueryTimes qp = time_queries(pm.frames, fa, fb, o_.proven_tol, pm.sample, pm.overlapping);
+      const QueryTimes qc = time_queries(pm.frames, fa, fb, 2 * eps, pm.sample, pm.overlapping, true);
       BenchRecord r;
       r.experiment = "motion", r.pair = pm.name, r.eps = eps, r.tol = 2 * eps;
       set_counters(r, q);
@@ -638,8 +668,47 @@ class Runner {
     records.push_back(t);
   }
 
+  // revdist alone on every Figure 12 frame at each sweep eps (tol 2 eps), one
+  // record "all" per eps: how query time grows as eps shrinks.
+  void sweep(std::vector<BenchRecord>& records) {
+    if (motions_.empty()) return;
+    std::vector<double> eps = o_.sweep_eps;
+    if (eps.empty()) {
+      const double hi = *std::max_element(o_.eps.begin(), o_.eps.end());
+      double floor = 0;  // no fit finer than 1e-9 of the largest static solid
+      for (const auto& s : in_.statics) floor = std::max(floor, 1e-9 * solid_extent(s.def));
+      for (double e = hi; e >= 0.01 * fine_eps_ * (1 - 1e-9) && e >= floor; e /= 10) eps.push_back(e);
+    }
+    std::sort(eps.rbegin(), eps.rend());
+    eps.erase(std::unique(eps.begin(), eps.end()), eps.end());
+    if (eps.size() < 2) return;
+    for (double e : eps) {
+      const std::string el = eps_label(e);
+      say("sweep eps " + el);
+      std::vector<std::unique_ptr<Built>> trees;
+      for (const auto& s : in_.statics) trees.push_back(build(profile_at(s.def, 0.0), e));
+      QueryTimes all;
+      BenchRecord r;
+      r.experiment = "sweep", r.pair = "all", r.eps = e, r.tol = 2 * e;
+      for (const PairMotion& pm : motions_) {
+        const Built* ta = trees[pm.a].get();
+        const Built* tb = trees[pm.b].get();
+        merge(all, time_queries(pm.frames, [ta](int) { return ta->posed(); }, [tb](int) { return tb->posed(); }, 2 * e,
+                                {}, pm.overlapping));
+        r.nodes += ta->stats.nodes + tb->stats.nodes, r.leaves += ta->stats.leaves + tb->stats.leaves;
+        r.bytes += static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
+      }
+      set_counters(r, all);
+      r.proven_overlap_p99_us = nearest_rank_percentile(all.proven_overlap_us, 0.99);
+      r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
+      r.proven_median_us = r.proven_p90_us = NAN;
+      records.push_back(r);
+    }
+  }
+
   static void merge(QueryTimes& into, const QueryTimes& q) {
     into.us.insert(into.us.end(), q.us.begin(), q.us.end());
+    into.planned_overlaps += q.planned_overlaps;
     into.overlap_us.insert(into.overlap_us.end(), q.overlap_us.begin(), q.overlap_us.end());
     into.proven_overlap_us.insert(into.proven_overlap_us.end(), q.proven_overlap_us.begin(), q.proven_overlap_us.end());
     into.node_pairs += q.node_pairs, into.leaf_pairs += q.leaf_pairs, into.patch_pairs += q.patch_pairs;
@@ -651,6 +720,7 @@ class Runner {
   const BenchOptions& o_;
   double fine_eps_ = 1e-5, setup_eps_ = 1e-5;
   std::vector<PairMotion> motions_, deforms_;
+  std::vector<std::unique_ptr<Built>> reference_;  // static trees at fine_eps_ (classify)
 };
 
 BenchInput::Solid solid_named(const Case& c, const std::string& name, const std::string& file) {
@@ -746,6 +816,8 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   if (options.eps.empty()) throw InputError("--eps: at least one value");
   for (double e : options.eps)
     if (!(e > 0) || !std::isfinite(e)) throw InputError("--eps: every value must be a finite positive number");
+  for (double e : options.sweep_eps)
+    if (!(e > 0) || !std::isfinite(e)) throw InputError("sweep eps: every value must be a finite positive number");
   if (options.frames < 1) throw InputError("--frames must be at least 1");
   // A poses file that is there must be a file whose size can be read (it is
   // read once the run has begun: /dev/null was refused after the banner).
@@ -762,6 +834,7 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   for (const auto& s : input.deformables) all.push_back(&s);
   for (const BenchInput::Solid* s : all) {
     const std::string who = input.source + ": solid " + quote(s->name);
+    for (double e : options.sweep_eps) require_resolvable_eps(e, solid_extent(s->def), who);
     for (double e : options.eps) {
       require_resolvable_eps(e, solid_extent(s->def), who);
       if (options.fcl)

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -40,12 +41,28 @@ TEST(BenchCli, PaperSmokeWritesRecordsAndReport) {
   EXPECT_EQ(doc["format"], "revdist-bench/1");
   EXPECT_NE(doc["timing"].get<std::string>().find("CLOCK_THREAD_CPUTIME_ID"), std::string::npos);
   std::set<std::string> motion_pairs, builds, deforms;
+  std::vector<double> sweep;
   for (const auto& x : doc["records"]) {
     for (const char* key : {"pair", "eps", "median_us", "p90_us", "fcl_median_us", "ratio", "nodes", "bytes"})
       EXPECT_TRUE(x.contains(key)) << key;
-    EXPECT_EQ(x["eps"].get<double>(), 1e-3);
     const std::string e = x["experiment"];
+    if (e == "sweep") {
+      // revdist alone over the decades from --eps down to 1/100 of it, all 45 frames each.
+      sweep.push_back(x["eps"].get<double>());
+      EXPECT_EQ(x["pair"], "all");
+      EXPECT_EQ(x["samples"].get<int>(), 45);
+      EXPECT_GT(x["median_us"].get<double>(), 0);
+      EXPECT_TRUE(x["fcl_median_us"].is_null());
+      EXPECT_EQ(x["unconverged"].get<int>(), 0) << x;
+      continue;
+    }
+    EXPECT_EQ(x["eps"].get<double>(), 1e-3);
     if (e == "motion") {
+      // A proven overlap is an overlap: the reference (tol 1e-9) finds it too.
+      EXPECT_LE(x["overlaps"].get<int>(), x["overlapping_frames"].get<int>()) << x;
+      if (x["overlapping_frames"].get<int>() == 0) {
+        EXPECT_TRUE(x["overlap_p99_us"].is_null()) << x;
+      }
       motion_pairs.insert(x["pair"].get<std::string>());
       EXPECT_GT(x["median_us"].get<double>(), 0);
       EXPECT_GE(x["p90_us"].get<double>(), x["median_us"].get<double>());
@@ -78,6 +95,9 @@ TEST(BenchCli, PaperSmokeWritesRecordsAndReport) {
     }
   }
   EXPECT_EQ(motion_pairs.size(), 16u);  // the 15 pairs (Mi, Mj), i <= j, and "all"
+  ASSERT_EQ(sweep.size(), 3u);
+  EXPECT_NEAR(sweep[0], 1e-3, 1e-18);
+  EXPECT_NEAR(sweep[2], 1e-5, 1e-20);
   EXPECT_EQ(builds, (std::set<std::string>{"pawn", "cup", "bottle", "table", "lightmil", "Mt"}));
   EXPECT_EQ(deforms.size(), 5u);
   for (const char* f : {"bench.md", "bench.json", "fig8.svg", "fig9.svg", "fig12.svg"})
@@ -86,6 +106,8 @@ TEST(BenchCli, PaperSmokeWritesRecordsAndReport) {
   const std::string md = read(out / "bench.md");
   EXPECT_NE(md.find("![Figure 12](fig12.svg)"), std::string::npos);
   EXPECT_NE(md.find("| lightmil | 1e-03 |"), std::string::npos);
+  EXPECT_NE(md.find("## Query time against eps"), std::string::npos);
+  EXPECT_NE(md.find("median growth eps 1e-03 -> 1e-05"), std::string::npos);
   const std::string svg = read(out / "fig12.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
