@@ -19,13 +19,6 @@ namespace revdist {
 
 namespace {
 
-double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((q - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * d - q).norm();
-}
-
 // Parameters of one piece's chords, u0 first, each chord within eps / 2 of the
 // curve; false (and *us unusable) once more than `cap` chords would be needed.
 bool piece_breaks(const Piece& piece, double eps, std::size_t cap, std::vector<double>* us_out) {
@@ -52,7 +45,8 @@ bool piece_breaks(const Piece& piece, double eps, std::size_t cap, std::vector<d
     if (over) return;
     const Vec2 pa = piece_point(piece, a), pb = piece_point(piece, b);
     double dev = 0.0;
-    for (int k = 1; k < 16; ++k) dev = std::max(dev, segment_distance(piece_point(piece, a + (b - a) * k / 16), pa, pb));
+    for (int k = 1; k < 16; ++k)
+      dev = std::max(dev, point_segment_distance(piece_point(piece, a + (b - a) * k / 16), pa, pb));
     if (dev > 0.5 * eps && depth < 40) {
       split(a, 0.5 * (a + b), depth + 1);
       split(0.5 * (a + b), b, depth + 1);

@@ -310,13 +310,8 @@ Vec2 piece_point(const Piece& piece, double u) {
 
 double chord_flatness(const std::vector<Vec2>& points) {
   if (points.empty()) return 0.0;
-  const Vec2 a = points.front(), ab = points.back() - a;
-  const double len2 = ab.squaredNorm();
   double e = 0.0;
-  for (const Vec2& p : points) {
-    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    e = std::max(e, (p - (a + t * ab)).norm());
-  }
+  for (const Vec2& p : points) e = std::max(e, point_segment_distance(p, points.front(), points.back()));
   return e;
 }
 

@@ -14,18 +14,10 @@ namespace {
 
 constexpr double kHalfPi = 1.57079632679489661923;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 Vec2 perp(const Vec2& a) { return Vec2(-a.y(), a.x()); }
 
 // tan(angle(u, t) / 2) for unit u, t: sin / (1 + cos), exact as the angle -> 0.
-double half_tan(const Vec2& u, const Vec2& t) { return cross(u, t) / (1.0 + u.dot(t)); }
-
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double s = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + s * ab)).norm();
-}
+double half_tan(const Vec2& u, const Vec2& t) { return cross2(u, t) / (1.0 + u.dot(t)); }
 
 }  // namespace
 
@@ -38,8 +30,8 @@ LensBound lens_bound(const SpanEnds& e) {
     return lb;
   }
   const Vec2 u = v / d;
-  lb.alpha = std::atan2(cross(u, e.t0), u.dot(e.t0));
-  lb.beta = std::atan2(cross(u, e.t1), u.dot(e.t1));
+  lb.alpha = std::atan2(cross2(u, e.t0), u.dot(e.t0));
+  lb.beta = std::atan2(cross2(u, e.t1), u.dot(e.t1));
   lb.width = 0.5 * d * std::abs(half_tan(u, e.t0) + half_tan(u, e.t1));
   // 1e-9 rad: the angles come from tangents with ~1e-15 relative error; a real
   // violation (a missed split) is far larger. The chord adds its own rounding:
@@ -68,7 +60,7 @@ Arc2 arc_from_tangent(const Vec2& p, const Vec2& t, const Vec2& q) {
   arc.tangent = t;
   if (!(l2 > 0)) return arc;  // zero length
   const double l = std::sqrt(l2);
-  const double c = cross(t, w), dd = t.dot(w);
+  const double c = cross2(t, w), dd = t.dot(w);
   arc.curvature = 2.0 * c / l2;
   // Turning = 2 * half; length = l * half / sin(half), sin(half) = c / l.
   const double half = std::atan2(c, dd);
@@ -86,8 +78,8 @@ Vec2 joint_on_circle(const SpanEnds& e, const Vec2& hint) {
   const double d = v.norm();
   const Vec2 u = v / d, n = perp(u);
   // Joint circle: tangent at p0 at the mean angle theta = (alpha - beta) / 2.
-  const double alpha = std::atan2(cross(u, e.t0), u.dot(e.t0));
-  const double beta = std::atan2(cross(u, e.t1), u.dot(e.t1));
+  const double alpha = std::atan2(cross2(u, e.t0), u.dot(e.t0));
+  const double beta = std::atan2(cross2(u, e.t1), u.dot(e.t1));
   const double theta = 0.5 * (alpha - beta);
   const double k = 2.0 * std::sin(theta) / d;  // signed curvature of the joint circle
   const double x = std::clamp((hint - e.p0).dot(u), 0.0, d);
@@ -111,8 +103,8 @@ Biarc fit_curve_biarc(const Piece& piece, double u0, double u1, const SpanEnds& 
   const Vec2 v = e.p1 - e.p0;
   const double d2 = v.squaredNorm();
   const Vec2 tau = (e.t0 + (2.0 * v.dot(e.t1) / d2 * v - e.t1)).normalized();  // t0 + reflect(t1)
-  const double ctv = cross(tau, v);
-  // g(X) = cross(tau, X - p0) d^2 - cross(tau, v) |X - p0|^2 vanishes on the joint circle.
+  const double ctv = cross2(tau, v);
+  // g(X) = cross2(tau, X - p0) d^2 - cross2(tau, v) |X - p0|^2 vanishes on the joint circle.
   double u = 0.5 * (u0 + u1);
   Vec2 x = mid;
   for (int it = 0; it < 3; ++it) {
@@ -120,7 +112,7 @@ Biarc fit_curve_biarc(const Piece& piece, double u0, double u1, const SpanEnds& 
     piece_derivatives(piece, u, 1, c);
     x = c[0];
     const Vec2 w = c[0] - e.p0;
-    const double g = cross(tau, w) * d2 - ctv * w.squaredNorm();
+    const double g = cross2(tau, w) * d2 - ctv * w.squaredNorm();
     const double dg = (perp(tau) * d2 - 2.0 * ctv * w).dot(c[1]);
     if (!(std::abs(dg) > 0)) break;
     const double un = u - g / dg;

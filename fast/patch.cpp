@@ -7,10 +7,6 @@
 
 namespace revdist {
 
-namespace {
-double cross2(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-}  // namespace
-
 Patch make_patch(const Arc2& arc, const Mat3& R, const Vec3& t) {
   Patch p;
   p.o = t;

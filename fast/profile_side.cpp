@@ -69,14 +69,6 @@ int arc_crossings(const Arc2& a, const Vec2& q, const Vec2& d, double tol) {
   return count;
 }
 
-// Distance from q to the segment a-b.
-double segment_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
-  const Vec2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double s = l2 > 0 ? std::clamp((q - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (q - (a + s * d)).norm();
-}
-
 // Distance between the ray q + t d (t >= 0, |d| = 1) and the segment a-b (0 when they meet).
 double ray_segment_distance(const Vec2& q, const Vec2& d, const Vec2& a, const Vec2& b) {
   const Vec2 n(-d.y(), d.x());
@@ -87,7 +79,7 @@ double ray_segment_distance(const Vec2& q, const Vec2& d, const Vec2& a, const V
     if (d.dot(x - q) >= 0) return 0.0;
   }
   auto to_ray = [&](const Vec2& p) { return (p - (q + std::max(0.0, d.dot(p - q)) * d)).norm(); };
-  return std::min({to_ray(a), to_ray(b), segment_distance(a, b, q)});
+  return std::min({to_ray(a), to_ray(b), point_segment_distance(q, a, b)});
 }
 
 }  // namespace
@@ -114,7 +106,7 @@ Side profile_side(BiarcTreeView& tree, const Vec2& q, double margin) {
       // A capsule that misses the ray and keeps margin from q: its part of the
       // true curve neither crosses the ray nor comes near q.
       if (ray_segment_distance(q, d, n.seg_a, n.seg_b) - n.radius > tol &&
-          segment_distance(n.seg_a, n.seg_b, q) - n.radius > margin)
+          point_segment_distance(q, n.seg_a, n.seg_b) - n.radius > margin)
         continue;
       if (!n.leaf()) {
         const std::int32_t c = tree.children(i);

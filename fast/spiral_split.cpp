@@ -25,20 +25,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // The functions whose signs the lens hypotheses need, on one rational Bezier
 // segment of a piece, as polynomials in the segment's parameter t in [0, 1]
 // (u = u0 + t (u1 - u0), so d/dt = (u1 - u0) d/du keeps every sign). With the
 // homogeneous form P = (X, Y, W) = (w r, w z, w), C = (X, Y) / W:
 //   C'          = A / W^2,  A = (X'W - XW', Y'W - YW')
-//   cross(C',C'') = D / W^3, D = det[P, P', P'']
+//   cross2(C',C'') = D / W^3, D = det[P, P', P'']
 //   kappa       = D W^3 / |A|^3
 //   d kappa/dt  = W^2 N / |A|^5,  N = (D'W + 3DW') |A|^2 - 3DW (A.A')
 // so with W > 0 (weights are positive) r', z', the curvature and its
 // derivative have the signs of A_x, A_y, D and N, and |A|^2 = 0 marks a
 // singular point. For a polynomial segment (W = 1) these reduce to A = C',
-// D = cross(C', C''), N = D'|C'|^2 - 3D (C'.C''), of much lower degree.
+// D = cross2(C', C''), N = D'|C'|^2 - 3D (C'.C''), of much lower degree.
 // Each term of a sum has the same nominal degree, so no degree elevation.
 struct SegmentFunctions {
   BernsteinPoly f[4];  // A_x, A_y, D, N
@@ -333,7 +332,7 @@ Vec2 piece_tangent(const Piece& piece, double u, int side, Vec2* unit_tangent, d
   }
   if (n1 > 1e-10 * (n2 * h + n3 * h * h)) {
     *unit_tangent = d[1] / n1;
-    *curvature = cross(d[1], d[2]) / (n1 * n1 * n1);
+    *curvature = cross2(d[1], d[2]) / (n1 * n1 * n1);
   } else if (n2 > 1e-10 * n3 * h) {
     // C'(u + s) ~ s C'': forward from above, backward from below.
     *unit_tangent = (side > 0 ? 1.0 : -1.0) * d[2] / n2;

@@ -24,15 +24,6 @@ inline std::uint64_t test_seed(std::uint64_t fallback) {
   return seed;
 }
 
-inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-inline double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double s = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + s * ab)).norm();
-}
-
 // Exact distance from p to the arc (circle part or segment), in a form that
 // stays accurate as the curvature -> 0 (no centre far away).
 inline double point_arc_distance(const Vec2& p, const Arc2& arc) {
