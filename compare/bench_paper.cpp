@@ -517,7 +517,8 @@ class Runner {
   }
   // Static solid i's tree at the finest eps (the overlap reference's), built once.
   const Built& reference(std::size_t i) {
-    while (reference_.size() <= i) reference_.push_back(build(profile_at(in_.statics[reference_.size()].def, 0.0), fine_eps_));
+    while (reference_.size() <= i)
+      reference_.push_back(build(profile_at(in_.statics[reference_.size()].def, 0.0), fine_eps_));
     return *reference_[i];
   }
 
