@@ -1218,30 +1218,26 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
   return done(true);
 }
 
-bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
-                          int* evals_out, const Vec3* hint) {
-  int evals = 0;
-  auto done = [&](bool ok) {
-    if (evals_out) *evals_out = evals;
-    return ok;
-  };
-  if (T.straight) return done(false);
-  const Circle3 spine = patch_major_circle(T);
+namespace {
+
+// patch_spine_at_least for one spine of T: every point of T lies within
+// `tube` of circle `spine` (about T's axis) at its own azimuth.
+bool spine_at_least(const Patch& W, const GaussWindow& win, const Patch& T, const Circle3& spine, double tube,
+                    double cut, double margin, int budget, double* lower, int* evals, const Vec3* hint) {
   const double R = spine.radius;
   // A nearly straight arc's circle lies far out (R and rho_T large): the
   // rounding of its points, of their distances and of the tube's subtraction
   // is a few ulps of those lengths, not of the patches' coordinates.
-  margin += 64 * std::numeric_limits<double>::epsilon() * (spine.center.cwiseAbs().maxCoeff() + R + T.rho);
-  const GaussWindow win = gauss_window(W);
+  margin += 64 * std::numeric_limits<double>::epsilon() * (spine.center.cwiseAbs().maxCoeff() + R + tube);
   // dist(y, W) at a point of the spine, less the rounding of the evaluation
   // and of y (a few ulps of the coordinates: margin).
   auto dist = [&](const Vec3& y) {
-    ++evals;
+    ++*evals;
     Vec2 best;
     return nearest_local(W, win, patch_local(W, y), &best) - margin;
   };
   // A point of the spine closer than this cannot be cleared.
-  const double need = cut + T.rho + margin;
+  const double need = cut + tube + margin;
   // The first point is the spine's nearest to the hint (where a pair that
   // cannot be cleared usually shows at once), the others follow around.
   Vec3 e1, e2;
@@ -1271,10 +1267,10 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
       static constexpr double cs[kStart][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};  // quarter turns
       e.y = spine.center + R * (cs[k][0] * e1 + cs[k][1] * e2);
       e.d = dist(e.y);
-      if (e.d < need) return done(false);
+      if (e.d < need) return false;
       if (R == 0) {  // a sphere's spine is a point
-        *lower = e.d - T.rho;
-        return done(true);
+        *lower = e.d - tube;
+        return true;
       }
     }
     if (k == 0) first = e;
@@ -1292,17 +1288,17 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
         std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - (L2 > 0 ? 0.25 * dq * dq / L2 : 0.0);
     const double bound = std::sqrt(std::max(0.0, chord2)) - sag - margin;
     if (bound >= need) {
-      least = std::min(least, bound - T.rho);
+      least = std::min(least, bound - tube);
       continue;
     }
-    if (evals >= budget || n + 2 > kOpen) return done(false);
+    if (*evals >= budget || n + 2 > kOpen) return false;
     Vec3 mid = 0.5 * (arc.a.y + arc.b.y) - spine.center;
     mid -= mid.dot(spine.normal) * spine.normal;
     const double len = mid.norm();
-    if (!(len > 0)) return done(false);
+    if (!(len > 0)) return false;
     End m{spine.center + (R / len) * mid, 0.0};
     m.d = dist(m.y);
-    if (m.d < need) return done(false);
+    if (m.d < need) return false;
     // The half with the nearer end first: a closer point is found sooner.
     if (arc.a.d < arc.b.d) {
       open[n++] = {m, arc.b};
@@ -1313,7 +1309,29 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
     }
   }
   *lower = least;
-  return done(true);
+  return true;
+}
+
+}  // namespace
+
+bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
+                          int* evals_out, const Vec3* hint) {
+  int evals = 0;
+  const GaussWindow win = gauss_window(W);
+  // T's major circle (tube T.rho) first: exact along T's normals. Then, where
+  // thinner (a short or flat arc, a segment), the circle its bounding disk's
+  // centre sweeps, of that disk's radius (patch_disk): a point of T is within
+  // it of the disk's centre at its own azimuth.
+  bool ok = !T.straight && spine_at_least(W, win, T, patch_major_circle(T), T.rho, cut, margin, budget, lower, &evals, hint);
+  if (!ok) {
+    Vec2 dc;
+    double dr;
+    patch_disk(T, &dc, &dr);
+    if (T.straight || dr < T.rho)
+      ok = spine_at_least(W, win, T, patch_disk_circle(T, dc), dr, cut, margin, evals + budget, lower, &evals, hint);
+  }
+  if (evals_out) *evals_out = evals;
+  return ok;
 }
 
 PatchPairResult patch_pair_distance(const Patch& A, const Patch& B, double cutoff, double known_lower, unsigned outer) {

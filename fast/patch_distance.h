@@ -104,8 +104,9 @@ bool patches_apart(const Patch& P, const Patch& Q, double margin, int budget);
 bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin, int budget, double* lower,
                       int* evals = nullptr, Vec2* closer = nullptr, Vec2* seen = nullptr);
 
-// A proof that patch W and toroidal patch T are at least `cut` apart from T's
-// major circle alone: every point of T lies within rho_T of that circle, so
+// A proof that patches W and T are at least `cut` apart from a circle of T
+// alone, first T's major circle (a toroidal T): every point of T lies within
+// rho_T of that circle, so
 // dist(W, T) >= min over the circle of dist(y, W) - rho_T, a one-dimensional
 // minimum of a closed-form distance (W's, in y's meridian half-plane). Its
 // window is W's own: where T's full torus stays near the solid's true surface
@@ -120,10 +121,16 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 // |d1^2 - d0^2| >= L^2, and L^2 / (8 d) at a minimum), and the arc lies
 // within its sagitta of the chord. Arcs are halved until each clears the cut
 // or the budget of evaluations is spent. True when every arc clears: *lower
-// is then the least arc bound (>= cut). False ("not proven") when T is a
-// cone, a point of the circle is closer than cut + rho_T, or the budget runs
-// out. margin: the rounding allowance of the evaluations. hint: a point near
-// where the patches are closest (a query's witness), where the cutting starts.
+// is then the least arc bound (>= cut). When the major circle's bound fails,
+// the same bound is tried, with a budget of its own, on the circle that the
+// centre of T's bounding disk sweeps (patch_disk), with the disk's radius for
+// rho_T: every point of T lies within it of that circle at its own azimuth.
+// Where that disk is the thinner tube (a short or flat arc, whose circle lies
+// far out; a segment, which has none) it proves what the major circle cannot.
+// False ("not proven") when a point of each circle tried is closer than cut
+// plus its tube, or the budgets run out. margin: the rounding allowance of
+// the evaluations. hint: a point near where the patches are closest (a
+// query's witness), where the cutting starts.
 bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
                           int* evals = nullptr, const Vec3* hint = nullptr);
 
