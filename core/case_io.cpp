@@ -99,6 +99,11 @@ void check_knots(const Piece& p, const JsonWhere& where) {
   // Only the knots' ratios matter, but their differences must be finite doubles.
   if (!(std::abs(t.front()) <= kMaxMagnitude && std::abs(t.back()) <= kMaxMagnitude))
     where.fail("knots " + fmt(t.front()) + " .. " + fmt(t.back()) + " outside +-" + fmt(kMaxMagnitude));
+  // Interior knots lie strictly inside: an end repeated more than degree + 1
+  // times leaves a control point without effect (the curve would not start
+  // or end at it).
+  if (n > static_cast<std::size_t>(deg) + 1 && !(t[deg + 1] > t.front() && t[n - 1] < t.back()))
+    where.fail("an end knot is repeated more than degree + 1 = " + std::to_string(deg + 1) + " times");
   for (std::size_t i = deg + 1; i < n;) {
     std::size_t k = i;
     while (k < n && t[k] == t[i]) ++k;
