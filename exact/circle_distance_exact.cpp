@@ -187,6 +187,21 @@ bool is_finite(const Circle3& c) {
   return c.center.allFinite() && c.normal.allFinite() && std::isfinite(c.radius);
 }
 
+// An interval [lo, hi] of width w is narrow enough when w <= target (relative
+// to the pair's scale) and its middle is the nearest double of every point of
+// it: lo and hi round to the same double, or, straddling a tie between two,
+// w is within 2^-80 of lo (the middle is then a nearest double up to 2^-28
+// ulp). A distance far below the scale (radii 1e50, distance 1) needs that
+// many more bits than the target alone: at the target alone the interval
+// [0, 9.9e13] was "ok" for a distance of 1.
+bool narrow_enough(mpfr_srcptr lo, mpfr_srcptr hi, mpfr_srcptr w, double target) {
+  if (!mpfr_number_p(w) || mpfr_cmp_d(w, target) > 0) return false;
+  if (mpfr_get_d(lo, MPFR_RNDN) == mpfr_get_d(hi, MPFR_RNDN)) return true;
+  Fr tie(64);
+  mpfr_mul_2si(tie.get(), lo, -80, MPFR_RNDD);
+  return mpfr_cmp(w, tie.get()) <= 0;
+}
+
 // Encloses a closed form at increasing precision until it is narrow enough.
 template <class F>
 bool enclose_closed_form(F&& eval, double target, int max_bits, ExactCircleResult& r) {
@@ -198,9 +213,10 @@ bool enclose_closed_form(F&& eval, double target, int max_bits, ExactCircleResul
     if (mpfr_sgn(lo.get()) < 0) mpfr_set_zero(lo.get(), 1);
     Fr w(d.prec());
     mpfr_sub(w.get(), hi.get(), lo.get(), MPFR_RNDU);
-    if (mpfr_cmp_d(w.get(), target) <= 0 || 2 * bits > max_bits) {
+    const bool narrow = narrow_enough(lo.get(), hi.get(), w.get(), target);
+    if (narrow || 2 * bits > max_bits) {
       set_interval(r, lo.get(), hi.get());
-      if (mpfr_cmp_d(w.get(), target) > 0) {
+      if (!narrow) {
         r.status = ExactStatus::not_certified;
         r.reason = "closed form: width target not reached at max_precision_bits";
       }
@@ -671,7 +687,7 @@ ExactCircleResult general_case(const Circle3& a, const Circle3& b, const PairFra
       if (mpfr_cmp(c.lo.get(), L.get()) < 0) L = c.lo;
     Fr w(std::max(mpfr_get_prec(L.get()), mpfr_get_prec(U.get())));
     mpfr_sub(w.get(), U.get(), L.get(), MPFR_RNDU);
-    if (mpfr_number_p(w.get()) && mpfr_cmp_d(w.get(), target) <= 0) {
+    if (narrow_enough(L.get(), U.get(), w.get(), target)) {
       reached = true;
       break;
     }

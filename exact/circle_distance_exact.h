@@ -48,7 +48,10 @@ struct ExactOptions {
 // Certified minimum distance between circles a and b (radius 0 = a point).
 // The doubles are read as exact rationals; the result is an interval proven
 // to contain the distance, of width <= options.relative_width * scale with
-// scale = max(r_a, r_b, |C_a - C_b|), or status not_certified with a reason.
+// scale = max(r_a, r_b, |C_a - C_b|) and narrow enough that `distance` (its
+// middle) is the nearest double of the distance (both ends round to it, or
+// the width is within 2^-80 of the lower end), or status not_certified with
+// a reason.
 // Contact (distance exactly 0) is decided exactly. Never throws.
 // status infinitely_many: the minimum is attained on a continuum (coaxial and
 // Villarceau pairs, a point or a closest point on the axis of the other circle).

@@ -165,6 +165,23 @@ unsigned seed_from_env() {
 
 // ---------------------------------------------------------------- closed forms
 
+// A distance far below the pair's scale: circles of radius R = 1e50 (and
+// 1e100) about perpendicular axes (z and y), centres 1 apart along x. They
+// share no point, and the closest pairs are (R, 0, 0) and (1 + R, 0, 0) (and
+// their mirrors), exactly 1 apart: nearby pairs are farther by about R times
+// the squared angles. `distance` must be the nearest double, 1, with status
+// ok: at the scale's relative width alone the third hostile review got
+// [0, 9.9e13], "ok", distance 4.9e13.
+TEST(CircleDistanceExact, DistanceFarBelowTheScaleIsTheNearestDouble) {
+  for (double R : {1e50, 1e100}) {
+    const auto r = circle3_circle3_distance_exact(C({0, 0, 0}, {0, 0, 1}, R), C({1, 0, 0}, {0, 1, 0}, R));
+    ASSERT_EQ(r.status, ExactStatus::ok) << R << " " << r.reason;
+    EXPECT_EQ(r.distance, 1.0) << R;
+    EXPECT_LE(r.lower, 1.0) << R;
+    EXPECT_GE(r.upper, 1.0) << R;
+  }
+}
+
 TEST(CircleDistanceExact, CoplanarDisjoint) {
   // |C| − R_a − R_b with |C| = 5, normals not unit.
   expect_certified(C({0, 0, 0}, {0, 0, 3}, 1), C({3, 4, 0}, {0, 0, -0.5}, 2), 2.0,
