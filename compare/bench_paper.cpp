@@ -833,14 +833,31 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   std::vector<const BenchInput::Solid*> all;
   for (const auto& s : input.statics) all.push_back(&s);
   for (const auto& s : input.deformables) all.push_back(&s);
+  const std::string hint = "use a larger --eps or --no-fcl";
   for (const BenchInput::Solid* s : all) {
     const std::string who = input.source + ": solid " + quote(s->name);
     for (double e : options.sweep_eps) require_resolvable_eps(e, solid_extent(s->def), who);
     for (double e : options.eps) {
       require_resolvable_eps(e, solid_extent(s->def), who);
       if (options.fcl)
-        for (const Profile& p : s->def.keyframes) require_mesh_within_limit(p, e, who, "use a larger --eps or --no-fcl");
+        for (const Profile& p : s->def.keyframes) require_meshes_within_limit({&p}, e, who, hint);
     }
+  }
+  // At one eps the static solids' meshes are alive together, with one frame
+  // of a deformable solid's beside them.
+  if (!options.fcl) return;
+  std::vector<Profile> statics;
+  for (const auto& s : input.statics) statics.push_back(profile_at(s.def, 0.0));
+  std::vector<const Profile*> alive;
+  for (const Profile& p : statics) alive.push_back(&p);
+  for (double e : options.eps) {
+    require_meshes_within_limit(alive, e, input.source, hint);
+    for (const auto& d : input.deformables)
+      for (const Profile& p : d.def.keyframes) {
+        alive.push_back(&p);
+        require_meshes_within_limit(alive, e, input.source, hint);
+        alive.pop_back();
+      }
   }
 }
 

@@ -260,12 +260,24 @@ void check_compare(const std::vector<std::string>& cases, const CompareOptions& 
     const CaseScale s = case_scale(c);
     std::vector<bool> used(c.instances.size(), false);
     for (const auto& [ia, ib] : c.queries) used[ia] = used[ib] = true;
+    // One mesh per solid and time the queries use (instances share it), all
+    // alive together at one eps.
+    std::map<std::pair<std::size_t, double>, Profile> shapes;
+    for (std::size_t i = 0; i < c.instances.size(); ++i)
+      if (used[i]) {
+        const auto key = std::make_pair(c.instances[i].solid, c.instances[i].time);
+        if (!shapes.count(key)) shapes.emplace(key, profile_at(c.solids[c.instances[i].solid], c.instances[i].time));
+      }
     for (double e : o.eps) {
       require_resolvable_eps(e, s.extent, file);
+      std::vector<const Profile*> alive;
       for (std::size_t i = 0; i < c.instances.size(); ++i)
-        if (used[i])
-          require_mesh_within_limit(profile_at(c.solids[c.instances[i].solid], c.instances[i].time), e,
-                                    file + ": instance " + quote(c.instances[i].name), "use a larger --eps");
+        if (used[i]) {
+          const Profile& p = shapes.at({c.instances[i].solid, c.instances[i].time});
+          require_meshes_within_limit({&p}, e, file + ": instance " + quote(c.instances[i].name), "use a larger --eps");
+        }
+      for (const auto& [key, p] : shapes) alive.push_back(&p);
+      require_meshes_within_limit(alive, e, file, "use a larger --eps");
     }
   }
 }
@@ -388,10 +400,16 @@ CompareOutput run_compare(const std::vector<std::string>& cases, const CompareOp
         }
       }
       // FCL on inscribed meshes of the same eps.
+      // One per solid and time: instances of the same shape share it.
+      std::map<std::pair<std::size_t, double>, std::shared_ptr<const FclMesh>> by_shape;
       std::map<std::size_t, std::shared_ptr<const FclMesh>> meshes;
       for (const auto& [ia, ib] : c.queries)
-        for (std::size_t i : {ia, ib})
-          if (!meshes.count(i)) meshes[i] = make_fcl_mesh(mesh_solid(profiles[i], eps));
+        for (std::size_t i : {ia, ib}) {
+          if (meshes.count(i)) continue;
+          auto& m = by_shape[{c.instances[i].solid, c.instances[i].time}];
+          if (!m) m = make_fcl_mesh(mesh_solid(profiles[i], eps));
+          meshes[i] = m;
+        }
       for (std::size_t q = 0; q < c.queries.size(); ++q) {
         const auto [ia, ib] = c.queries[q];
         const ExactSolidResult& x = exact[q];

@@ -105,12 +105,22 @@ long mesh_triangles(const Profile& profile, double eps) {
   return plan_mesh(profile, eps, kMaxMeshTriangles, &plan) ? plan.triangles : -1;
 }
 
-void require_mesh_within_limit(const Profile& profile, double eps, const std::string& who, const std::string& hint) {
-  if (mesh_triangles(profile, eps) >= 0) return;
+void require_meshes_within_limit(const std::vector<const Profile*>& profiles, double eps, const std::string& who,
+                                 const std::string& hint) {
+  long total = 0;
+  for (const Profile* p : profiles) {
+    MeshPlan plan;
+    if (!plan_mesh(*p, eps, kMaxMeshTriangles - total, &plan)) {
+      total = -1;
+      break;
+    }
+    total += plan.triangles;
+  }
+  if (total >= 0) return;
   char e[32];
   std::snprintf(e, sizeof e, "%.3g", eps);
-  throw InputError(who + ": its FCL mesh at --eps " + e + " would exceed " + std::to_string(kMaxMeshTriangles) +
-                   " triangles (~2 GB); " + hint);
+  throw InputError(who + ": " + (profiles.size() == 1 ? "its FCL mesh" : "its FCL meshes") + " at --eps " + e +
+                   " would exceed " + std::to_string(kMaxMeshTriangles) + " triangles (~2.7 GB); " + hint);
 }
 
 SolidMesh mesh_solid(const Profile& profile, double eps) {

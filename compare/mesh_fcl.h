@@ -34,14 +34,19 @@ struct SolidMesh {
 SolidMesh mesh_solid(const Profile& profile, double eps);
 
 // The most triangles one mesh may have: FCL's OBBRSS hierarchy takes ~520 bytes
-// a triangle (measured: 834K triangles, 430 MB), so about 2 GB.
+// a triangle (measured: 834K triangles, 430 MB), so about 2 GB; building one
+// of 3.99M triangles peaked at 2.7 GB (the mesh and FCL's copy of it).
 constexpr long kMaxMeshTriangles = 4000000;
 // The triangles mesh_solid(profile, eps) would make, -1 beyond kMaxMeshTriangles
 // (found without building the mesh; bounded work however small eps is).
 long mesh_triangles(const Profile& profile, double eps);
-// InputError naming `who` (and ending with `hint`) when that mesh would exceed
-// kMaxMeshTriangles: compare and bench refuse before any work.
-void require_mesh_within_limit(const Profile& profile, double eps, const std::string& who, const std::string& hint);
+// InputError naming `who` (and ending with `hint`) when the meshes of these
+// profiles, alive together, would exceed kMaxMeshTriangles in all: compare
+// and bench refuse before any work. (One mesh under the limit each was not
+// enough: two instances of a 20000-line ball, 3.99M triangles each, took
+// compare past 4.9 GB.)
+void require_meshes_within_limit(const std::vector<const Profile*>& profiles, double eps, const std::string& who,
+                                 const std::string& hint);
 
 // An FCL OBBRSS bounding-volume hierarchy of a mesh (opaque: FCL stays in the .cpp).
 class FclMesh;
