@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "core/case_scale.h"
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
 #include "core/input_error.h"
@@ -34,6 +35,7 @@ struct Options {
   int threads = 1;
   double eps = 1e-5;
   double tol = 1e-6;
+  bool eps_given = false, tol_given = false;
   bool json = false;
   bool stats_only = false;
   bool no_coherence = false;
@@ -59,7 +61,7 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * static_cast<double>(v.size() - 1) + 0.5)))];
 }
 
-void run(const Options& o) {
+void run(Options o) {
   if (!(o.eps > 0) || !(o.tol > 0) || !std::isfinite(o.eps) || !std::isfinite(o.tol))
     throw InputError("--eps and --tol must be positive");
   const int asked = (o.within >= 0) + (o.closest > 0 && o.nearest.empty()) + !o.nearest.empty();
@@ -68,6 +70,14 @@ void run(const Options& o) {
     throw InputError("--within must be a finite distance >= 0");
   if (o.nearest_given && o.nearest.empty()) throw InputError("--nearest: empty instance name");
   const Case c = read_case(o.file, false);
+  // As `distance`: unset, eps and tol scale with the model; set, fits and
+  // brackets below what doubles resolve for this case are refused (its poses
+  // at frame 0 set the queries' extent).
+  const CaseScale scale = case_scale(c);
+  if (!o.eps_given) o.eps = std::max(1e-5 * default_unit(scale), min_eps(scale));
+  if (!o.tol_given) o.tol = std::max(1e-6 * default_unit(scale), min_tol(scale));
+  require_resolvable_eps(o.eps, scale.extent, o.file);
+  require_resolvable_tol(o.tol, scale.query_extent, o.file);
   // Every pose of every frame in the coordinates' range (core/case_io.cpp), from
   // the motion's terms: |translation(f)| <= |t| + F |v| + F^2 |a| / 2 + 2 |amplitude|.
   const double F = static_cast<double>(o.frames - 1);
@@ -191,16 +201,18 @@ void add_scene_command(CLI::App& app) {
       ->check(CLI::Range(1L, 100000L))->capture_default_str();
   cmd->add_option("--threads", opts->threads, "worker threads (answers do not depend on it)")
       ->check(CLI::Range(1, 256))->capture_default_str();
-  cmd->add_option("--eps", opts->eps, "biarc approximation bound (proven)")->capture_default_str();
-  cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol")->capture_default_str();
+  CLI::Option* eps = cmd->add_option("--eps", opts->eps, "biarc approximation bound (proven; default 1e-5 x the model's unit)");
+  CLI::Option* tol = cmd->add_option("--tol", opts->tol, "stop when upper - lower <= tol (default 1e-6 x the model's unit)");
   cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-scene/1)");
   cmd->add_flag("--stats-only", opts->stats_only, "counters and times only, no pair list");
   cmd->add_flag("--no-coherence", opts->no_coherence,
                 "--within: recompute every pair each frame instead of settling it from its previous frame");
   cmd->add_flag("--lazy", opts->lazy,
                 "lazy biarc trees for deforming shapes (time_rate): nodes fitted when a query first reaches them");
-  cmd->callback([opts, nearest] {
+  cmd->callback([opts, nearest, eps, tol] {
     opts->nearest_given = nearest->count() > 0;
+    opts->eps_given = eps->count() > 0;
+    opts->tol_given = tol->count() > 0;
     run(*opts);
   });
 }

@@ -268,6 +268,7 @@ void check_compare(const std::vector<std::string>& cases, const CompareOptions& 
         const auto key = std::make_pair(c.instances[i].solid, c.instances[i].time);
         if (!shapes.count(key)) shapes.emplace(key, profile_at(c.solids[c.instances[i].solid], c.instances[i].time));
       }
+    for (double t : o.tol) require_resolvable_tol(t, s.query_extent, file);
     for (double e : o.eps) {
       require_resolvable_eps(e, s.extent, file);
       std::vector<const Profile*> alive;

@@ -22,16 +22,27 @@ double solid_extent(const SolidDef& s) {
   return extent;
 }
 
+namespace {
+std::string g3(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+}  // namespace
+
 void require_resolvable_eps(double eps, double extent, const std::string& who) {
   if (eps >= kMinRelativeEps * extent) return;
-  auto g = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.3g", v);
-    return std::string(b);
-  };
+  auto g = g3;
   throw InputError(who + ": --eps " + g(eps) + " is below the smallest meaningful value " +
                    g(kMinRelativeEps * extent) + " (" + g(kMinRelativeEps) + " of the extent " + g(extent) +
                    "; finer fits are lost in rounding)");
+}
+
+void require_resolvable_tol(double tol, double query_extent, const std::string& who) {
+  if (tol >= kMinRelativeTol * query_extent) return;
+  throw InputError(who + ": --tol " + g3(tol) + " is below the smallest meaningful value " +
+                   g3(kMinRelativeTol * query_extent) + " (" + g3(kMinRelativeTol) + " of the queries' extent " +
+                   g3(query_extent) + "; narrower brackets are lost in rounding)");
 }
 
 CaseScale case_scale(const Case& c) {

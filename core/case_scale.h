@@ -32,6 +32,8 @@ inline double min_eps(const CaseScale& s) { return kMinRelativeEps * s.extent; }
 // InputError naming `who` when eps < kMinRelativeEps * extent (compare, bench).
 void require_resolvable_eps(double eps, double extent, const std::string& who);
 inline double min_tol(const CaseScale& s) { return kMinRelativeTol * s.query_extent; }
+// InputError naming `who` when tol < kMinRelativeTol * query_extent (compare, scene).
+void require_resolvable_tol(double tol, double query_extent, const std::string& who);
 
 // The unit that scales the default eps and tol: 1 for models whose largest profile size
 // lies in [1e-2, 1e2] (the defaults were chosen for those), otherwise that size, so a

@@ -376,6 +376,10 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
                         "fold_back.json");
   expect_one_line_error(run("bench " + balls + " --eps 1e-20 --frames 1 --out " + out), "below the smallest");
   expect_one_line_error(run("bench " + balls + " --eps 1e-8 --frames 1 --out " + out), "--no-fcl");
+  // eps and tol floors in every command (scene and compare took --tol 1e-300).
+  expect_one_line_error(run("compare " + balls + " --tol 1e-300 --out " + out), "--tol 1e-300 is below");
+  expect_one_line_error(run("scene " + balls + " --tol 1e-300"), "--tol 1e-300 is below");
+  expect_one_line_error(run("scene " + balls + " --eps 1e-300"), "--eps 1e-300 is below");
   // Meshes within the limit one by one, not together (third hostile review:
   // two instances of a 20000-line ball took compare past 4.9 GB): refused
   // before any work. At 4e-6 each unit ball's mesh is ~2.5M triangles.
