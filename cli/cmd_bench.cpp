@@ -46,8 +46,15 @@ void run(const Options& o) {
     bo.seed = std::strtoull(s, nullptr, 10);
   }
   // Progress: one updating line on a terminal, plain lines otherwise (logs, CI).
+  // The banner comes with the first line: a poses file refused before any
+  // work (exit 2) leaves one line on stderr, not the banner and the error.
   const bool tty = isatty(STDERR_FILENO);
-  bo.progress = [tty](const std::string& line) {
+  auto banner = std::make_shared<std::string>();
+  bo.progress = [tty, banner](const std::string& line) {
+    if (!banner->empty()) {
+      std::fputs(banner->c_str(), stderr);
+      banner->clear();
+    }
     if (tty)
       std::fprintf(stderr, "\r\033[Kbench: %s", line.c_str());
     else
@@ -56,8 +63,10 @@ void run(const Options& o) {
   const BenchInput in = o.target == "paper" ? paper_bench_input(default_models_dir()) : case_bench_input(o.target);
   check_bench(in, bo);
   NewDirGuard out_dir(o.out, prepare_output_dir(o.out));
-  std::fprintf(stderr, "bench: %s, %d frames per pair, seed %llu (REVDIST_SEED or --seed to repeat)\n",
-               in.source.c_str(), bo.frames, static_cast<unsigned long long>(bo.seed));
+  char head[512];
+  std::snprintf(head, sizeof head, "bench: %s, %d frames per pair, seed %llu (REVDIST_SEED or --seed to repeat)\n",
+                in.source.c_str(), bo.frames, static_cast<unsigned long long>(bo.seed));
+  *banner = head;
   const BenchResult r = run_bench(in, bo);
   if (tty) std::fprintf(stderr, "\n");
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -466,12 +467,14 @@ class Runner {
   // Before any frame is placed: a poses file that cannot be written is refused now, not after the motions.
   void check_poses_writable() const {
     const std::string tmp = poses_tmp();
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     const bool ok = static_cast<bool>(out);
+    const int err = errno;
     out.close();
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
-    if (!ok) throw InputError(o_.poses_file + ": cannot write");
+    if (!ok) throw InputError(o_.poses_file + ": cannot write" + (err ? std::string(" (") + std::strerror(err) + ")" : ""));
   }
 
   void certify(PairMotion& pm, const std::function<Profile(int)>& pa, const std::function<Profile(int)>& pb) {

@@ -152,12 +152,21 @@ TEST(BenchCli, PosesFileWrittenThenReadThenRefusedForAnotherRun) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("motion frames from " + poses), std::string::npos) << r.err;
   EXPECT_EQ(read(poses), bytes);  // read, not rewritten
-  // Refused, one line naming the file: another run's poses (its size is not
-  // this run's), and a file of the right size that is not a poses file.
-  auto last_line = [](const std::string& err) { return err.substr(err.rfind('\n', err.size() - 2) + 1); };
+  // Refused, one line on stderr (the banner waits for the first progress
+  // line) naming the file: another run's poses (its size is not this run's),
+  // a file of the right size that is not a poses file, a file that cannot be
+  // written (with the reason).
+  auto last_line = [](const std::string& err) {
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    return err.substr(err.rfind('\n', err.size() - 2) + 1);
+  };
   const CommandRun x = run(args + " --frames 3");
   EXPECT_EQ(x.status, 2);
   EXPECT_EQ(last_line(x.err).rfind("revdist: " + poses + ": poses of another run (", 0), 0u) << x.err;
+  const std::string nowhere = tmp + "_no_such_dir/p.bin";
+  const CommandRun w2 = run("bench paper --eps 1e-3 --exact-frames 0 --no-fcl --frames 2 --poses " + nowhere + " --out " + tmp);
+  EXPECT_EQ(w2.status, 2);
+  EXPECT_EQ(last_line(w2.err), "revdist: " + nowhere + ": cannot write (No such file or directory)\n") << w2.err;
   {
     std::ofstream f(poses, std::ios::binary | std::ios::trunc);
     f << std::string(bytes.size(), 'x');
