@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -114,12 +115,15 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--exact-frames", opts->exact_frames,
                   "frames per pair checked against the certified engine (default 2; 0 skips)")
       ->check(CLI::Range(0, 1000));
-  cmd->add_option("--seed", opts->seed, "motion seed (default REVDIST_SEED or 20200501)")->check(finite_number(false));
+  cmd->add_option("--seed", opts->seed, "motion seed (default REVDIST_SEED or 20200501)")
+      ->check(seed_number(static_cast<std::uint64_t>(std::numeric_limits<long long>::max())));
   cmd->add_flag("--no-fcl", opts->no_fcl, "skip the FCL baseline");
   cmd->add_option("--poses", opts->poses,
                   "motion frames file: read when it exists (written by this option for the same target, seed and "
-                  "frames), else written; two builds then time the same poses");
-  cmd->add_option("--out", opts->out, "report directory (bench.md, bench.json, fig8/9/12.svg), default revdist-bench");
+                  "frames), else written; two builds then time the same poses")
+      ->check(non_empty_path());
+  cmd->add_option("--out", opts->out, "report directory (bench.md, bench.json, fig8/9/12.svg), default revdist-bench")
+      ->check(non_empty_path());
   cmd->add_flag("--json", opts->json, "print the revdist-bench/1 records on stdout");
   cmd->callback([opts] { run(*opts); });
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -75,11 +76,12 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--eps", o->eps, "fit bounds / mesh chordal errors (comma list; default 1e-3,1e-4,1e-5)")
       ->delimiter(',');
   cmd->add_option("--tol", o->tol, "fast tolerances (comma list; default 1e-4,1e-6,1e-8)")->delimiter(',');
-  cmd->add_option("--out", o->out, "output directory")->capture_default_str();
+  cmd->add_option("--out", o->out, "output directory")->check(non_empty_path())->capture_default_str();
   cmd->add_option("--repeat", o->compare.repeat, "timed runs per query and method")->capture_default_str();
   cmd->add_option("--frames", o->compare.frames, "random world frames per query besides the case's own")
       ->capture_default_str();
-  cmd->add_option("--seed", o->compare.seed, "seed of the random frames")->capture_default_str();
+  cmd->add_option("--seed", o->compare.seed, "seed of the random frames")
+      ->check(seed_number(std::numeric_limits<decltype(o->compare.seed)>::max()))->capture_default_str();
   cmd->add_flag("--no-arc-model", o->no_model, "skip the arithmetic error on the arc-spline model");
   cmd->add_flag("--json", o->json, "print compare.json to stdout");
   cmd->callback([o] { run(*o); });

@@ -182,7 +182,8 @@ void add_fit_command(CLI::App& app) {
       "profile size when that lies outside [0.01, 100]; at least 1e-12 of the largest solid extent");
   cmd->add_option("--svg", opts->svg_dir,
                   "write DIR/<solid>.svg (profile, arcs, error bands, split points), all files or none; in file "
-                  "names every byte but [A-Za-z0-9-] is written _XX");
+                  "names every byte but [A-Za-z0-9-] is written _XX")
+      ->check(non_empty_path());
   cmd->add_flag("--audit", opts->audit,
                 "certify every leaf with interval arithmetic on the input curve (exact/): certified_error, violations");
   cmd->add_flag("--json", opts->json, "machine-readable JSON (revdist-fit/1: solids[] with name, nodes, leaves, "

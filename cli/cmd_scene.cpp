@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -236,8 +237,10 @@ void add_scene_gen_command(CLI::App& app) {
   // (10^7 ran out of memory and aborted, 10^6 took 3.5 GB for a 483 MB file; 2 x 10^5
   // wrote 97 MB, past the 64 MiB every reader takes; 10^5: 48 MB, 0.45 GB and 1.3 s.)
   cmd->add_option("--n", o->n, "about this many instances")->check(CLI::Range(2, 100000))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "random seed (motions, shelf items)")->capture_default_str();
-  cmd->add_option("--out", o->out, "output file (written whole or not at all); stdout when absent");
+  cmd->add_option("--seed", o->seed, "random seed (motions, shelf items)")
+      ->check(seed_number(std::numeric_limits<std::uint64_t>::max()))->capture_default_str();
+  cmd->add_option("--out", o->out, "output file (written whole or not at all); stdout when absent")
+      ->check(non_empty_path());
   cmd->callback([o] {
     const nlohmann::json doc = o->kind == "rings" ? ring_mesh_case(o->n, o->seed) : shelf_case(o->n, o->seed);
     const std::string text = doc.dump(1) + "\n";

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <optional>
@@ -154,9 +155,11 @@ void add_stress_command(CLI::App& app) {
       "stress", "Near-degenerate families checked against closed forms, a brute force on the true surfaces and exact/");
   cmd->add_option("--family", o->families, "family name, or all (repeatable)");
   cmd->add_option("--n", o->n, "cases per family (at most 10000000)")->check(CLI::Range(0L, 10000000L))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "seed of the case stream")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of the case stream")
+      ->check(seed_number(std::numeric_limits<std::uint64_t>::max()))->capture_default_str();
   cmd->add_flag("--json", o->json, "machine-readable JSON (revdist-stress/1)");
-  cmd->add_option("--save-worst", o->save_worst, "write the worst case of each family as a case file into DIR");
+  cmd->add_option("--save-worst", o->save_worst, "write the worst case of each family as a case file into DIR")
+      ->check(non_empty_path());
   cmd->add_option("--shard", o->shard, "run slice K of M of the stream (cases with index % M == K - 1)")
       ->capture_default_str();
   cmd->add_option("--merge", o->merge, "combine the JSON of shards into one report")->expected(1, -1);

@@ -2,7 +2,10 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <string>
 
 namespace revdist::cli {
@@ -20,6 +23,27 @@ inline CLI::Validator finite_number(bool positive) {
         return {};
       },
       positive ? "POSITIVE" : "NONNEGATIVE");
+}
+
+// A seed: decimal digits only, at most `max` (CLI11's own conversion wrapped
+// -1 to 2^64 - 1 and clamped 10^23 to 2^63 - 1, silently).
+inline CLI::Validator seed_number(std::uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& s) -> std::string {
+        const std::string range = "must be an integer from 0 to " + std::to_string(max) + ", got " + s;
+        if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return range;
+        errno = 0;
+        const unsigned long long v = std::strtoull(s.c_str(), nullptr, 10);
+        if (errno == ERANGE || v > max) return range;
+        return {};
+      },
+      "SEED");
+}
+
+// A file or directory option: not empty (an empty --svg or --save-worst wrote
+// nothing and exited 0).
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator([](std::string& s) -> std::string { return s.empty() ? "must not be empty" : ""; }, "PATH");
 }
 
 void add_circles_command(CLI::App& app);

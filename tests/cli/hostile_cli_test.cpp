@@ -376,6 +376,15 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
                         "fold_back.json");
   expect_one_line_error(run("bench " + balls + " --eps 1e-20 --frames 1 --out " + out), "below the smallest");
   expect_one_line_error(run("bench " + balls + " --eps 1e-8 --frames 1 --out " + out), "--no-fcl");
+  // Seeds out of range were wrapped (-1) or clamped (10^23), empty paths
+  // wrote nothing and exited 0 (third hostile review).
+  expect_one_line_error(run("scene-gen shelf --seed -1"), "--seed: must be an integer from 0 to 18446744073709551615");
+  expect_one_line_error(run("bench paper --frames 1 --seed 99999999999999999999999 --out " + out),
+                        "--seed: must be an integer from 0 to 9223372036854775807");
+  expect_one_line_error(run("stress --family all --n 1 --seed 1e3"), "--seed: must be an integer");
+  expect_one_line_error(run("fit " + balls + " --svg ''"), "--svg: must not be empty");
+  expect_one_line_error(run("stress --family all --n 1 --save-worst ''"), "--save-worst: must not be empty");
+  expect_one_line_error(run("compare " + balls + " --out ''"), "--out: must not be empty");
   // eps and tol floors in every command (scene and compare took --tol 1e-300).
   expect_one_line_error(run("compare " + balls + " --tol 1e-300 --out " + out), "--tol 1e-300 is below");
   expect_one_line_error(run("scene " + balls + " --tol 1e-300"), "--tol 1e-300 is below");
