@@ -429,7 +429,7 @@ std::vector<ScenePair> Scene::within(double d, SceneStats* st) {
 // counters (per worker) and the gathering of the answer; the pairs are
 // computed in slots kept across calls (their strings keep their storage), and
 // moved to the caller's vector, whose elements are reused when it is passed again.
-void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
+bool Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out, std::size_t max_answers) {
   StepTimer timer(st);
   const long n = static_cast<long>(size());
   std::vector<std::pair<std::int32_t, std::int32_t>>& cand = cand_;
@@ -442,6 +442,20 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
     throw InputError(std::string("within ") + dist + ": more than " + std::to_string(kMaxWithinPairs) +
                      " pairs of instances whose boxes are that close (a call answers at most that many); ask a "
                      "smaller distance, or --closest K");
+  }
+  if (cand.size() > max_answers) {
+    // A point of each surface: its profile's start, at azimuth 0.
+    auto surface_point = [&](std::int32_t i) {
+      const PosedSolid& s = model_.instances[i];
+      const Vec2 q = s.profile->pieces.front().points.front();
+      return Vec3(s.R * Vec3(q.x(), 0, q.y()) + s.t);
+    };
+    std::size_t sure = 0;
+    for (const auto& [a, b] : cand) sure += (surface_point(a) - surface_point(b)).norm() <= d;
+    if (sure > max_answers) {
+      out->clear();
+      return false;
+    }
   }
   parallel_section(st, [&] { return sort_pairs(&cand, size(), options_.threads); });
   {
@@ -549,6 +563,7 @@ void Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out) {
       memory_first_[a] = static_cast<std::int32_t>(j);
     }
   }
+  return true;
 }
 
 // Best-first over a stream of pairs in non-decreasing box gap. Batches have a

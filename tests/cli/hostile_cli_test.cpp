@@ -385,6 +385,18 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
   expect_one_line_error(run("fit " + balls + " --svg ''"), "--svg: must not be empty");
   expect_one_line_error(run("stress --family all --n 1 --save-worst ''"), "--save-worst: must not be empty");
   expect_one_line_error(run("compare " + balls + " --out ''"), "--out: must not be empty");
+  // 2000 rings stacked in one place: refused before the narrow phase (it
+  // answered 2M queries, 32 s and 1.3 GB, before refusing the records).
+  {
+    std::string inst;
+    for (int i = 0; i < 2000; ++i)
+      inst += std::string(i ? "," : "") + R"({"name": "r)" + std::to_string(i) + R"(", "solid": "ring"})";
+    const std::string stacked = audit::write("stacked.json", R"({"format": "revdist/1", "solids": {"ring":
+        {"profile": [{"arc": [[1.12, 0], [1, 0.12], [0.88, 0]]}, {"arc": [[0.88, 0], [1, -0.12], [1.12, 0]]}]}},
+        "instances": [)" + inst + "]}");
+    // (The message is the pre-check's, made before any narrow-phase call.)
+    expect_one_line_error(run("scene " + stacked + " --within 0.3 --json"), "more than 500000 pair records by frame 0");
+  }
   // eps and tol floors in every command (scene and compare took --tol 1e-300).
   expect_one_line_error(run("compare " + balls + " --tol 1e-300 --out " + out), "--tol 1e-300 is below");
   expect_one_line_error(run("scene " + balls + " --tol 1e-300"), "--tol 1e-300 is below");

@@ -433,6 +433,26 @@ TEST(Scene, ClosestAndNearestMatchSortingEveryPair) {
   }
 }
 
+// within(d, ..., max_answers): more pairs certainly within d (points of
+// both surfaces that close) than max_answers refuse the frame before any
+// narrow-phase call; fewer answer as without the cap.
+TEST(Scene, WithinRefusesBeforeQueryingWhenCertainPairsExceedTheCap) {
+  const Case c = random_scene(test_seed(29, "WithinCap"), 40, 3.0);
+  Scene capped(c, {}), plain(c, {});
+  SceneStats a, b;
+  capped.set_frame(0.0, &a);
+  plain.set_frame(0.0, &b);
+  const std::vector<ScenePair> all = plain.within(1e6, &b);  // every pair: all surface points are that close
+  ASSERT_GT(all.size(), 10u);
+  std::vector<ScenePair> out(3);
+  SceneStats st;
+  EXPECT_FALSE(capped.within(1e6, &st, &out, all.size() - 1));
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(st.narrow_calls, 0);
+  EXPECT_TRUE(capped.within(1e6, &st, &out, all.size()));
+  expect_same(all, out);
+}
+
 TEST(Scene, ThreadsGiveBitIdenticalAnswers) {
   const Case c = random_scene(test_seed(23, "Threads"), 40, 3.0);
   SceneOptions one, three;
