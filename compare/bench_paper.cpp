@@ -823,6 +823,10 @@ void check_bench(const BenchInput& input, const BenchOptions& options) {
   for (double e : options.sweep_eps)
     if (!(e > 0) || !std::isfinite(e)) throw InputError("sweep eps: every value must be a finite positive number");
   if (options.frames < 1) throw InputError("--frames must be at least 1");
+  // (2000 frames take about 3 minutes; 10^6 was accepted and ran for hours.)
+  if (options.frames > kMaxBenchFrames)
+    throw InputError("--frames " + std::to_string(options.frames) + ": at most " + std::to_string(kMaxBenchFrames) +
+                     " (2000 take about 3 minutes)");
   // A poses file that is there must be a file whose size can be read (it is
   // read once the run has begun: /dev/null was refused after the banner).
   if (!options.poses_file.empty()) {

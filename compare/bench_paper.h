@@ -15,6 +15,9 @@
 
 namespace revdist {
 
+// The most frames per pair a run takes (--frames): about half an hour.
+constexpr int kMaxBenchFrames = 20000;
+
 struct BenchOptions {
   std::vector<double> eps = {1e-3, 1e-4, 1e-5};
   int frames = 200;         // frames per pair (Figure 12) and of the deformable model (Figures 8, 9)

@@ -184,6 +184,7 @@ TEST(BenchCli, BadInputExitsTwo) {
   EXPECT_EQ(run("bench paper --eps 0" + out).status, 2);
   EXPECT_EQ(run("bench paper --eps 1e-3,x" + out).status, 2);
   EXPECT_EQ(run("bench paper --frames 0" + out).status, 2);
+  EXPECT_EQ(run("bench paper --frames 1000000" + out).status, 2);  // (was accepted: hours)
   const CommandRun r = run("bench " + src("cases/bad/not_json.json") + out);
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
