@@ -1654,6 +1654,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
                   coord, round + up_round);
     res.reason = why;
   }
+  // A tree with unproven leaves (the spiral split could not prove its
+  // hypotheses: fast/spiral_split.h) bounds nothing there; that, not what it
+  // led to (an undecided containment test, say), is why.
+  if (!res.converged && !res.decided && !(std::isfinite(pa.tree->max_error) && std::isfinite(pb.tree->max_error)))
+    res.reason = std::string("the fit of solid ") + (std::isfinite(pa.tree->max_error) ? "b" : "a") +
+                 " is not proven on some leaves (the spiral hypotheses could not be proven there): no finite bound "
+                 "from them";
   if (!res.converged && res.reason.empty())
     res.reason = res.decided ? "threshold decided before the bracket met tol" : "bracket wider than tol";
   return res;

@@ -49,6 +49,7 @@ const std::map<std::string, std::string> kBad = {
     {"bad_degree", R"(solid "vase" piece 0: degree 2.5)"},
     {"bezier_cusp", R"(solid "s" piece 0: the curve stops at parameter 0.5, at (1, 0.75))"},
     {"blend_self_intersecting", R"(instance "a" (solid "morph" at time 0.5): self-intersecting)"},
+    {"bspline_end_knot_repeated", R"(solid "s" piece 0: an end knot is repeated more than degree + 1 = 2 times)"},
     {"bspline_knot_count", R"(solid "vase" piece 0: degree 3 with 5 points needs 9 knots, got 8)"},
     {"bspline_too_few_points", R"(solid "vase" piece 1: degree 3 needs at least 4 points)"},
     {"duplicate_instance", R"(instance "a": duplicate instance name)"},
