@@ -360,8 +360,21 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
       inst.pose.q[i] = read_number(q[i], wq);
       n2 += inst.pose.q[i] * inst.pose.q[i];
     }
-    if (n2 == 0) wq.fail("the zero quaternion is not a rotation");
-    if (!(n2 >= DBL_MIN) || !std::isfinite(n2)) wq.fail("quaternion too small or too large to normalise (|q|^2 = " + fmt(n2) + ")");
+    double m = 0;
+    for (int i = 0; i < 4; ++i) m = std::max(m, std::abs(inst.pose.q[i]));
+    if (m == 0) wq.fail("the zero quaternion is not a rotation");
+    // A tiny quaternion is the same rotation scaled up by a power of two
+    // (exactly: no component grows past the largest); [1e-170, 1e-170, 0, 0]
+    // was refused as the zero quaternion, its |q|^2 underflowing.
+    if (m < 1) {
+      const int up = -std::ilogb(m);
+      n2 = 0;
+      for (int i = 0; i < 4; ++i) {
+        inst.pose.q[i] = std::ldexp(inst.pose.q[i], up);
+        n2 += inst.pose.q[i] * inst.pose.q[i];
+      }
+    }
+    if (!(n2 >= DBL_MIN) || !std::isfinite(n2)) wq.fail("quaternion too large to normalise (|q|^2 = " + fmt(n2) + ")");
   }
   if (j.contains("translation")) {
     inst.pose.translation = read_vec3(j["translation"], sub(w, "translation"));

@@ -358,7 +358,14 @@ void check_profile(const Profile& profile, const std::string& where) {
     if (diameter(all) <= tol) fail_piece(where, i, "degenerate piece (all its points within " + fmt(tol) + ")");
     // (A curve lies within the hull of its control points.)
     double r_max = 0;
-    for (const Vec2& q : ps[i].points) r_max = std::max(r_max, q.x());
+    Vec2 lowest = ps[i].points.front();
+    for (const Vec2& q : ps[i].points) {
+      r_max = std::max(r_max, q.x());
+      if (q.x() < lowest.x()) lowest = q;
+    }
+    // (A piece on the far side of the axis is that, not one lying on it.)
+    if (r_max <= tol && lowest.x() < -tol)
+      fail_piece(where, i, "negative r: r <= 0 throughout, down to r = " + fmt(lowest.x()) + " at " + fmt(lowest));
     if (r_max <= tol) fail_piece(where, i, "lies on the axis (r = 0 throughout): it bounds no volume");
     double u_stop;
     if ((ps[i].kind == PieceKind::bezier || ps[i].kind == PieceKind::bspline) &&

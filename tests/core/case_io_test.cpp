@@ -142,6 +142,28 @@ TEST(CaseIo, AllPairsAreCappedWhenQueriesAbsent) {
   }
 }
 
+// Accuracy review: a quaternion whose |q|^2 underflows is still a rotation
+// (it was refused as the zero quaternion), and a piece on the far side of the
+// axis is reported as negative r (it was "lies on the axis").
+TEST(CaseIo, TinyQuaternionIsItsRotationAndAFarSidePieceIsNegativeR) {
+  auto with_rotation = [](const std::string& q) {
+    return R"({"format": "revdist/1", "solids": {"s": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]}},
+               "instances": [{"name": "a", "solid": "s", "rotation": )" + q + R"(}, {"name": "b", "solid": "s"}]})";
+  };
+  const Case tiny = read_case_text(with_rotation("[1e-170, 1e-170, 0, 0]"), "tiny.json");
+  const Case unit = read_case_text(with_rotation("[1, 1, 0, 0]"), "unit.json");
+  EXPECT_EQ(tiny.instances[0].pose.rotation(), unit.instances[0].pose.rotation());
+  EXPECT_THROW(read_case_text(with_rotation("[0, 0, 0, 0]"), "zero.json"), InputError);
+  try {
+    read_case_text(R"({"format": "revdist/1", "solids": {"s": {"profile": [{"arc": [[0, 2], [-2, 0], [0, -2]]}]}},
+                       "instances": [{"name": "a", "solid": "s"}]})",
+                   "far.json");
+    ADD_FAILURE() << "a profile at r < 0 was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("negative r: r <= 0 throughout, down to r = -2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CaseIo, ProfileAtBlendsKeyframes) {
   const Case c = read_case(kSource + "/cases/models/morph.json");
   const SolidDef& s = c.solids.at(0);
