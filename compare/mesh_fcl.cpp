@@ -107,10 +107,11 @@ long mesh_triangles(const Profile& profile, double eps) {
 
 void require_meshes_within_limit(const std::vector<const Profile*>& profiles, double eps, const std::string& who,
                                  const std::string& hint) {
+  const long limit = profiles.size() == 1 ? kMaxMeshTriangles : kMaxMeshTrianglesTogether;
   long total = 0;
   for (const Profile* p : profiles) {
     MeshPlan plan;
-    if (!plan_mesh(*p, eps, kMaxMeshTriangles - total, &plan)) {
+    if (!plan_mesh(*p, eps, std::min(kMaxMeshTriangles, limit - total), &plan)) {
       total = -1;
       break;
     }
@@ -120,7 +121,8 @@ void require_meshes_within_limit(const std::vector<const Profile*>& profiles, do
   char e[32];
   std::snprintf(e, sizeof e, "%.3g", eps);
   throw InputError(who + ": " + (profiles.size() == 1 ? "its FCL mesh" : "its FCL meshes") + " at --eps " + e +
-                   " would exceed " + std::to_string(kMaxMeshTriangles) + " triangles (~2.7 GB); " + hint);
+                   " would exceed " + std::to_string(limit) + " triangles" +
+                   (profiles.size() == 1 ? " (~2.7 GB); " : " together (~4 GB); ") + hint);
 }
 
 SolidMesh mesh_solid(const Profile& profile, double eps) {

@@ -37,14 +37,19 @@ SolidMesh mesh_solid(const Profile& profile, double eps);
 // a triangle (measured: 834K triangles, 430 MB), so about 2 GB; building one
 // of 3.99M triangles peaked at 2.7 GB (the mesh and FCL's copy of it).
 constexpr long kMaxMeshTriangles = 4000000;
+// The most triangles of the meshes one run holds at once (compare: a case's
+// shapes at one eps; bench: the static solids and a deformable one's first
+// frame): the paper's five models and Mt at eps 1e-5 hold 3.97M (2.4 GB at
+// the run's peak).
+constexpr long kMaxMeshTrianglesTogether = 6000000;
 // The triangles mesh_solid(profile, eps) would make, -1 beyond kMaxMeshTriangles
 // (found without building the mesh; bounded work however small eps is).
 long mesh_triangles(const Profile& profile, double eps);
-// InputError naming `who` (and ending with `hint`) when the meshes of these
-// profiles, alive together, would exceed kMaxMeshTriangles in all: compare
-// and bench refuse before any work. (One mesh under the limit each was not
-// enough: two instances of a 20000-line ball, 3.99M triangles each, took
-// compare past 4.9 GB.)
+// InputError naming `who` (and ending with `hint`) when the mesh of one
+// profile would exceed kMaxMeshTriangles, or the meshes of several, alive
+// together, kMaxMeshTrianglesTogether in all: compare and bench refuse before
+// any work. (One mesh under the limit each was not enough: two instances of a
+// 20000-line ball, 3.99M triangles each, took compare past 4.9 GB.)
 void require_meshes_within_limit(const std::vector<const Profile*>& profiles, double eps, const std::string& who,
                                  const std::string& hint);
 

@@ -403,13 +403,13 @@ TEST(HostileCli, AuditCrashesAndRunawaysAreRefusedUpFront) {
   expect_one_line_error(run("scene " + balls + " --eps 1e-300"), "--eps 1e-300 is below");
   // Meshes within the limit one by one, not together (third hostile review:
   // two instances of a 20000-line ball took compare past 4.9 GB): refused
-  // before any work. At 4e-6 each unit ball's mesh is ~2.5M triangles.
+  // before any work. At 3e-6 each unit ball's mesh is ~3.3M triangles.
   const std::string two = audit::write("two_balls.json", R"({"format": "revdist/1",
       "solids": {"a": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]},
                  "b": {"profile": [{"arc": [[0, -1], [1, 0], [0, 1]]}]}},
       "instances": [{"name": "x", "solid": "a"}, {"name": "y", "solid": "b", "translation": [3, 0, 0]}]})");
-  expect_one_line_error(run("compare " + two + " --eps 4e-6 --out " + out), "its FCL meshes at --eps 4e-06 would exceed");
-  expect_one_line_error(run("bench " + two + " --eps 4e-6 --frames 1 --out " + out), "its FCL meshes at --eps 4e-06");
+  expect_one_line_error(run("compare " + two + " --eps 3e-6 --out " + out), "its FCL meshes at --eps 3e-06 would exceed 6000000");
+  expect_one_line_error(run("bench " + two + " --eps 3e-6 --frames 1 --out " + out), "its FCL meshes at --eps 3e-06");
   const std::string file = audit::write("a_file", "x");
   expect_one_line_error(run("compare " + balls + " --out " + file), "exists and is not a directory");
   expect_one_line_error(run("bench " + balls + " --frames 1 --out " + file), "exists and is not a directory");
