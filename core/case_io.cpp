@@ -363,10 +363,11 @@ Instance read_instance(const Json& j, const JsonWhere& at, const Case& c, const 
     double m = 0;
     for (int i = 0; i < 4; ++i) m = std::max(m, std::abs(inst.pose.q[i]));
     if (m == 0) wq.fail("the zero quaternion is not a rotation");
-    // A tiny quaternion is the same rotation scaled up by a power of two
-    // (exactly: no component grows past the largest); [1e-170, 1e-170, 0, 0]
-    // was refused as the zero quaternion, its |q|^2 underflowing.
-    if (m < 1) {
+    // A quaternion whose |q|^2 underflows is the same rotation scaled up by a
+    // power of two (exactly: no component grows past the largest);
+    // [1e-170, 1e-170, 0, 0] was refused as the zero quaternion. Others are
+    // kept as given.
+    if (!(n2 >= DBL_MIN)) {
       const int up = -std::ilogb(m);
       n2 = 0;
       for (int i = 0; i < 4; ++i) {
