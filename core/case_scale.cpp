@@ -23,6 +23,7 @@ double solid_extent(const SolidDef& s) {
 }
 
 namespace {
+// A number in a message: three significant digits.
 std::string g3(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.3g", v);
@@ -32,9 +33,8 @@ std::string g3(double v) {
 
 void require_resolvable_eps(double eps, double extent, const std::string& who) {
   if (eps >= kMinRelativeEps * extent) return;
-  auto g = g3;
-  throw InputError(who + ": --eps " + g(eps) + " is below the smallest meaningful value " +
-                   g(kMinRelativeEps * extent) + " (" + g(kMinRelativeEps) + " of the extent " + g(extent) +
+  throw InputError(who + ": --eps " + g3(eps) + " is below the smallest meaningful value " +
+                   g3(kMinRelativeEps * extent) + " (" + g3(kMinRelativeEps) + " of the extent " + g3(extent) +
                    "; finer fits are lost in rounding)");
 }
 
