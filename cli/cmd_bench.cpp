@@ -64,10 +64,8 @@ void run(const Options& o) {
   const BenchInput in = o.target == "paper" ? paper_bench_input(default_models_dir()) : case_bench_input(o.target);
   check_bench(in, bo);
   NewDirGuard out_dir(o.out, prepare_output_dir(o.out));
-  char head[512];
-  std::snprintf(head, sizeof head, "bench: %s, %d frames per pair, seed %llu (REVDIST_SEED or --seed to repeat)\n",
-                in.source.c_str(), bo.frames, static_cast<unsigned long long>(bo.seed));
-  *banner = head;
+  *banner = "bench: " + in.source + ", " + std::to_string(bo.frames) + " frames per pair, seed " +
+            std::to_string(bo.seed) + " (REVDIST_SEED or --seed to repeat)\n";
   const BenchResult r = run_bench(in, bo);
   if (tty) std::fprintf(stderr, "\n");
 

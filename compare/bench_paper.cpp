@@ -703,7 +703,6 @@ class Runner {
         r.bytes += static_cast<long>(ta->tree.bytes() + tb->tree.bytes());
       }
       set_counters(r, all);
-      r.proven_overlap_p99_us = nearest_rank_percentile(all.proven_overlap_us, 0.99);
       r.fcl_median_us = r.fcl_p90_us = r.fcl_mean_us = r.ratio = NAN;
       r.proven_median_us = r.proven_p90_us = NAN;
       records.push_back(r);

@@ -446,7 +446,6 @@ struct Solid {
   }
 
   // A genuine point of this solid's surface (the profile's first point at azimuth 0).
-  Vec3 some_surface_point() const { return surface_point(0); }
   // A few points of the surface (k = 0..kSurfacePoints-1): the profile's start
   // and end, the middles of its first and last pieces, at azimuth 0.
   static constexpr int kSurfacePoints = 4;
@@ -1628,7 +1627,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   }
   // A stop before any candidate (a small budget) still owes a finite
   // bracket: any two genuine surface points bound the distance from above.
-  if (!(ub < kInf)) offer(A.some_surface_point(), B.some_surface_point());
+  if (!(ub < kInf)) offer(A.surface_point(0), B.surface_point(0));
   if (!(ub < kInf)) {
     res.reason = "no candidate pair found";
     res.lower = lb;

@@ -349,11 +349,15 @@ void Scene::hull_bounds(std::size_t shape) {
 const PosedSolid& Scene::solid(std::size_t i) const {
   if (const std::size_t k = model_.shape_of[i]; stale_[k]) {
     stale_[k] = 0;
-    CaseModel::Shape& shape = *model_.shapes[k];
-    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees && runs_[k]);
-    unreported_nodes_ += static_cast<long>(shape.tree.nodes.size());  // reported by the next set_frame
+    unreported_nodes_ += build_tree(k);  // reported by the next set_frame
   }
   return model_.instances[i];
+}
+
+long Scene::build_tree(std::size_t k) const {
+  CaseModel::Shape& shape = *model_.shapes[k];
+  rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees && runs_[k]);
+  return static_cast<long>(shape.tree.nodes.size());
 }
 
 // Builds the trees of the stale shapes of `instances` (in parallel: one per
@@ -368,11 +372,7 @@ double Scene::build_stale(const std::vector<std::int32_t>& instances, SceneStats
     }
   if (todo.empty()) return 0.0;
   std::vector<long> built(todo.size(), 0);
-  const double cpu = parallel_for(todo.size(), options_.threads, [&](std::size_t j) {
-    CaseModel::Shape& shape = *model_.shapes[todo[j]];
-    rebuild_biarc_tree(shape.profile, options_.eps, shape.tree, &shape.stats, options_.lazy_trees && runs_[todo[j]]);
-    built[j] = static_cast<long>(shape.tree.nodes.size());
-  });
+  const double cpu = parallel_for(todo.size(), options_.threads, [&](std::size_t j) { built[j] = build_tree(todo[j]); });
   for (long b : built) st->nodes_built += b;
   for (std::size_t k : todo)
     if (!runs_[k]) fit_bounds(k);
@@ -447,7 +447,7 @@ bool Scene::within(double d, SceneStats* st, std::vector<ScenePair>* out, std::s
     // A point of each surface: its profile's start, at azimuth 0.
     auto surface_point = [&](std::int32_t i) {
       const PosedSolid& s = model_.instances[i];
-      const Vec2 q = s.profile->pieces.front().points.front();
+      const Vec2 q = s.profile->pieces.front().start();
       return Vec3(s.R * Vec3(q.x(), 0, q.y()) + s.t);
     };
     std::size_t sure = 0;

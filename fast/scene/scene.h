@@ -123,6 +123,9 @@ class Scene {
   void fit_bounds(std::size_t shape);
   void hull_bounds(std::size_t shape);
   double build_stale(const std::vector<std::int32_t>& instances, SceneStats* st);
+  // Builds shape k's tree (lazy where its time runs and lazy trees are asked);
+  // returns its node count.
+  long build_tree(std::size_t k) const;
   Aabb world_box(std::size_t i) const;
   SolidDistanceResult query(std::int32_t a, std::int32_t b, double threshold) const;
   template <class Stream>
