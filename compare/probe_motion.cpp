@@ -21,6 +21,8 @@
 // a WarmStart): what a witness exact from the start would save.
 // --coherent starts each query from the previous frame's answer of the same
 // pair (WarmStart, frame coherence).
+// --case K FILE writes frame K as a case file (the two models, their poses as
+// quaternions [w, x, y, z] from the frame's rotations): a regression of it.
 // --select re-runs the queries whose time ranks between quantiles LO and HI
 // with callgrind's collection toggled on around each (run under
 // `valgrind --tool=callgrind --collect-atstart=no`): the profile of, say, the
@@ -31,8 +33,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
@@ -71,7 +77,8 @@ int main(int argc, char** argv) {
   long only_index = -1;
   std::string bench_poses;  // a `revdist bench paper --poses` file: its static pairs' frames
   double sel_lo = -1, sel_hi = -1;
-  std::string poses_file, save, check, times;
+  std::string poses_file, save, check, times, case_file;
+  long case_frame = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : "";
@@ -89,6 +96,7 @@ int main(int argc, char** argv) {
     else if (a == "--only-overlap") only_overlap = true;
     else if (a == "--index") only_index = atol(v), ++i;
     else if (a == "--worst") worst = atoi(v), ++i;
+    else if (a == "--case" && i + 2 < argc) case_frame = atol(v), case_file = argv[i + 2], i += 2;
     else if (a == "--select") {
       if (sscanf(v, "%lf,%lf", &sel_lo, &sel_hi) != 2) return 2;
       ++i;
@@ -162,6 +170,28 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (case_frame >= 0) {
+    if (case_frame >= static_cast<long>(poses.size())) return 2;
+    const FramePose& p = poses[case_frame];
+    std::ifstream in_pairs(default_models_dir() + "/paper_pairs.json");
+    const nlohmann::json models = nlohmann::json::parse(in_pairs);
+    const std::string na = in.statics[p.a].name, nb = in.statics[p.b].name;
+    nlohmann::json doc;
+    doc["format"] = "revdist/1";
+    doc["comment"] = "motion probe frame " + std::to_string(case_frame) + ": " + na + " and " + nb;
+    doc["solids"][na] = models["solids"][na];
+    doc["solids"][nb] = models["solids"][nb];
+    auto instance = [](const char* name, const std::string& solid, const double* R, const double* t) {
+      const Mat3 rot = Eigen::Map<const Mat3>(R);
+      const Eigen::Quaterniond q(rot);
+      return nlohmann::json{{"name", name}, {"solid", solid}, {"rotation", {q.w(), q.x(), q.y(), q.z()}},
+                            {"translation", {t[0], t[1], t[2]}}};
+    };
+    doc["instances"] = {instance("a", na, p.Ra, p.ta), instance("b", nb, p.Rb, p.tb)};
+    doc["queries"] = nlohmann::json::array({nlohmann::json::array({"a", "b"})});
+    std::ofstream(case_file) << doc.dump(1) << "\n";
+    return 0;
+  }
   std::vector<BiarcTree> trees;
   for (const Profile& p : profiles) trees.push_back(build_biarc_tree(p, eps));
   DistanceOptions o;
@@ -203,7 +233,7 @@ int main(int argc, char** argv) {
       sum.patch_pairs += r.stats.patch_pairs, sum.quick_pairs += r.stats.quick_pairs, sum.refined += r.stats.refined;
       sum.local_pairs += r.stats.local_pairs, sum.local_boxes += r.stats.local_boxes;
       sum.spine_pairs += r.stats.spine_pairs, sum.spine_evals += r.stats.spine_evals;
-      sum.hull_pairs += r.stats.hull_pairs, sum.hull_parts += r.stats.hull_parts;
+      sum.hull_pairs += r.stats.hull_pairs, sum.hull_parts += r.stats.hull_parts, sum.spine_parts += r.stats.spine_parts;
     }
   std::vector<double> proven_us;  // the queries answered with a proven overlap
   for (std::size_t k = 0; k < us.size(); ++k) {
@@ -244,7 +274,8 @@ int main(int argc, char** argv) {
          }(), over_us.size(), nearest_rank_percentile(over_us, 0.5), nearest_rank_percentile(over_us, 0.99));
   printf("proven overlaps %zu: median %.1f us p90 %.1f p99 %.1f\n", proven_us.size(), nearest_rank_percentile(proven_us, 0.5),
          nearest_rank_percentile(proven_us, 0.9), nearest_rank_percentile(proven_us, 0.99));
-  printf("per query: popped pairs retired by their capsules' hulls %.1f\n", sum.hull_parts / n);
+  printf("per query: popped pairs retired by their capsules' hulls %.1f, given a fit's spine bound %.1f\n", sum.hull_parts / n,
+         sum.spine_parts / n);
   printf("per query: node_pairs %.1f bounds %.1f leaf_pairs %.1f patch_pairs %.1f quick %.1f hull %.1f spine %.1f (points %.1f) local %.1f (boxes %.1f) refined %.1f; overlaps %d unconverged %d\n",
          sum.node_pairs / n, sum.bounds / n, sum.leaf_pairs / n, sum.patch_pairs / n, sum.quick_pairs / n,
          sum.hull_pairs / n, sum.spine_pairs / n, sum.spine_evals / n, sum.local_pairs / n, sum.local_boxes / n, sum.refined / n, overlaps,

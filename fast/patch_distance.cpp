@@ -1221,9 +1221,10 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 namespace {
 
 // patch_spine_at_least for one spine of T: every point of T lies within
-// `tube` of circle `spine` (about T's axis) at its own azimuth.
-bool spine_at_least(const Patch& W, const GaussWindow& win, const Patch& T, const Circle3& spine, double tube,
-                    double cut, double margin, int budget, double* lower, int* evals, const Vec3* hint) {
+// `tube` of circle `spine` (about T's axis) at its own azimuth. (Any set
+// within `tube` of the circle at its own azimuth: patch_circle_at_least.)
+bool spine_at_least(const Patch& W, const GaussWindow& win, const Circle3& spine, double tube, double cut,
+                    double margin, int budget, double* lower, int* evals, const Vec3* hint) {
   const double R = spine.radius;
   // A nearly straight arc's circle lies far out (R and rho_T large): the
   // rounding of its points, of their distances and of the tube's subtraction
@@ -1240,8 +1241,8 @@ bool spine_at_least(const Patch& W, const GaussWindow& win, const Patch& T, cons
   const double need = cut + tube + margin;
   // The first point is the spine's nearest to the hint (where a pair that
   // cannot be cleared usually shows at once), the others follow around.
-  Vec3 e1, e2;
-  axis_frame(T, &e1, &e2);
+  const Vec3 any = std::abs(spine.normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  Vec3 e1 = spine.normal.cross(any).normalized(), e2 = spine.normal.cross(e1);
   if (hint) {
     Vec3 v = *hint - spine.center;
     v -= v.dot(spine.normal) * spine.normal;
@@ -1322,14 +1323,22 @@ bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double mar
   // thinner (a short or flat arc, a segment), the circle its bounding disk's
   // centre sweeps, of that disk's radius (patch_disk): a point of T is within
   // it of the disk's centre at its own azimuth.
-  bool ok = !T.straight && spine_at_least(W, win, T, patch_major_circle(T), T.rho, cut, margin, budget, lower, &evals, hint);
+  bool ok = !T.straight && spine_at_least(W, win, patch_major_circle(T), T.rho, cut, margin, budget, lower, &evals, hint);
   if (!ok) {
     Vec2 dc;
     double dr;
     patch_disk(T, &dc, &dr);
     if (T.straight || dr < T.rho)
-      ok = spine_at_least(W, win, T, patch_disk_circle(T, dc), dr, cut, margin, evals + budget, lower, &evals, hint);
+      ok = spine_at_least(W, win, patch_disk_circle(T, dc), dr, cut, margin, evals + budget, lower, &evals, hint);
   }
+  if (evals_out) *evals_out = evals;
+  return ok;
+}
+
+bool patch_circle_at_least(const Patch& W, const Circle3& spine, double tube, double cut, double margin, int budget,
+                           double* lower, int* evals_out, const Vec3* hint) {
+  int evals = 0;
+  const bool ok = spine_at_least(W, gauss_window(W), spine, tube, cut, margin, budget, lower, &evals, hint);
   if (evals_out) *evals_out = evals;
   return ok;
 }

@@ -134,6 +134,15 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
                           int* evals = nullptr, const Vec3* hint = nullptr);
 
+// The same proof for any set S that lies within `tube` of circle `spine` at
+// its own azimuth (the spine's normal is its axis; a part of a solid about
+// that axis, within its bounding disk of radius `tube`, is such a set): true
+// when every point of S is at least cut from W (*lower, >= cut, then bounds
+// that distance), false when not proven. Where W is much longer than S's
+// disk, W's own surface stands in for its loose bounding torus.
+bool patch_circle_at_least(const Patch& W, const Circle3& spine, double tube, double cut, double margin, int budget,
+                           double* lower, int* evals = nullptr, const Vec3* hint = nullptr);
+
 // The point of patch P at profile fraction u in [0, 1] and azimuth th (from a
 // fixed direction normal to P's axis).
 Vec3 patch_point(const Patch& P, double u, double th);

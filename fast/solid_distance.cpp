@@ -60,6 +60,9 @@ constexpr int kSpineBudget = 48;
 // Node pairs a query pops before its inner pairs get the tight bound too (the
 // paper motion's median query pops 145; see the loop).
 constexpr long kTightInner = 256;
+// A fit part this many times the other part's disk radius is bounded by its
+// own patches against that part's disk circle (fit_spine_bound) when popped.
+constexpr double kSpineRatio = 4.0;
 // A pair of points whose surfaces may cross near them gets the steps across
 // (Solid::across, the overlap probe) when they are within this fraction of
 // the longer fit's chord of each other. Measured on the motion probe's 3000
@@ -1020,6 +1023,27 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     if (u != witness_dir.dir()) witness_dir = RevolvedHullDirection(pa.t, A.axis, pb.t, B.axis, u);
     return witness_dir;
   };
+  // A lower bound on the distance between fit part f of F and part x of X
+  // (its eps and rounding taken off), -inf when the proof at the cut fails:
+  // f's patches against x's disk circle (patch_circle_at_least).
+  auto fit_spine_bound = [&](const Solid& F, const Part& f, const Solid& X, const Part& x) {
+    const BiarcFit& fit = F.fit(f);
+    const double need = cut() + fit.eps + round;
+    const Circle3 spine = X.disk_circle(x);
+    const Vec3& hint = &X == &B ? res.point_b : res.point_a;
+    double least = kInf;
+    for (int i = 0; i < fit.arcs; ++i) {
+      if (fit.arc[i].length <= 0) continue;
+      double lower = 0.0;
+      int evals = 0;
+      const bool ok = patch_circle_at_least(make_patch(fit.arc[i], F.s.R, F.s.t), spine, x.disk_r, need, round,
+                                            kSpineBudget, &lower, &evals, have_witness ? &hint : nullptr);
+      st.spine_evals += evals;
+      if (!ok) return -kInf;
+      least = std::min(least, lower);
+    }
+    return least - fit.eps - round;
+  };
   heap.push({cheap_bound(axes, A.parts[0], B.parts[0]) - round, 0, 0, false}, 0.0);
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
   // Lower bounds on the distance between the fits of the pairs compared so
@@ -1161,6 +1185,24 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         ++st.hull_parts;
         settled_lb = std::min(settled_lb, std::max(e.lb, lb));
         continue;
+      }
+    }
+    // A fit beside a part kSpineRatio or more times smaller (an exact line or
+    // arc, cut only to 1/16 of its profile, beside the small fits of a curve
+    // at a small eps): the fit's disk is loose by about half the fit's
+    // length, so every part of the other side within that of it would reach
+    // the leaf kernels. The fit's own patches against the small part's disk
+    // circle (patch_circle_at_least) bound the pair within the part's disk.
+    if (!e.tight && cut() < kInf) {
+      const Part &ha = A.parts[e.a], &hb = B.parts[e.b];
+      const bool a_big = ha.has_fit && ha.disk_r >= kSpineRatio * hb.disk_r;
+      if (a_big || (hb.has_fit && hb.disk_r >= kSpineRatio * ha.disk_r)) {
+        ++st.spine_parts;
+        const double lb = a_big ? fit_spine_bound(A, ha, B, hb) : fit_spine_bound(B, hb, A, ha);
+        if (lb >= cut()) {
+          settled_lb = std::min(settled_lb, lb);
+          continue;
+        }
       }
     }
     if (!e.tight && ((A.parts[e.a].has_fit && B.parts[e.b].has_fit) || st.node_pairs > kTightInner)) {

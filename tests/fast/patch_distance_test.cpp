@@ -776,6 +776,64 @@ TEST_P(PatchVsBrute, SpineBoundNeverAboveItsMinimum) {
   }
 }
 
+// patch_circle_at_least for any set within `tube` of a circle at its own
+// azimuth (the query's fit spine bound: a part of a solid within its bounding
+// disk): never above the least distance from W of the set's points farthest
+// out, sampled around the circle and round the tube. Circles about random
+// axes near the patch, tubes from 0 to a third of the circle's distance.
+TEST_P(PatchVsBrute, CircleBoundNeverAboveTheSetsMinimum) {
+  const Kind k = GetParam();
+  std::mt19937_64 g = kind_rng(k, 67);
+  std::normal_distribution<double> N(0, 1);
+  std::uniform_real_distribution<double> U(0, 1);
+  int tries = 0, proven_half = 0, proven_close = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const KernelTrial t = kernel_trial(g, k);
+    const Patch& W = trial % 2 == 0 ? t.p.A : t.p.B;
+    const Vec3 near = trial % 2 == 0 ? t.r.y : t.r.x;  // a point of the other patch, near W
+    const double coord = std::max(t.coord, 8.0);
+    const double margin = 256 * kEps * coord;
+    const Vec3 axis = Vec3(N(g), N(g), N(g)).normalized();
+    const Vec3 any = std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    const Vec3 e1 = axis.cross(any).normalized(), e2 = axis.cross(e1);
+    const Circle3 c{near + 0.3 * Vec3(N(g), N(g), N(g)), axis, 0.05 + U(g)};
+    // The set's least distance from W, sampled (1000 azimuths, 24 points round the tube at each).
+    auto set_min = [&](double tube) {
+      double m = INFINITY;
+      for (int i = 0; i < 1000; ++i) {
+        const double th = 2 * M_PI * i / 1000;
+        const Vec3 radial = std::cos(th) * e1 + std::sin(th) * e2, y = c.center + c.radius * radial;
+        m = std::min(m, point_patch_distance(W, y) - tube);  // (the spine's own bound, below the set's)
+        for (int j = 0; j < 24; ++j) {
+          const double ph = 2 * M_PI * j / 24;
+          m = std::min(m, point_patch_distance(W, y + tube * (std::cos(ph) * radial + std::sin(ph) * axis)));
+        }
+      }
+      return m;
+    };
+    const double spine_min = set_min(0.0);
+    if (!(spine_min > 1e-3)) continue;
+    const double tube = U(g) * spine_min / 3;
+    const double brute = set_min(tube);  // at most the points' least distance, at least the spine's less the tube
+    ++tries;
+    double lower = 0;
+    EXPECT_FALSE(patch_circle_at_least(W, c, tube, brute + 1e-7, margin, 1 << 14, &lower, nullptr, &near))
+        << "trial " << trial << ": proven " << lower << " > sampled minimum " << brute;
+    for (double cut : {0.5 * brute, spine_min - tube - 1e-6}) {
+      if (patch_circle_at_least(W, c, tube, cut, margin, 1 << 14, &lower, nullptr, &near)) {
+        (cut == 0.5 * brute ? proven_half : proven_close) += 1;
+        EXPECT_GE(lower, cut);
+        EXPECT_LE(lower, brute + margin) << "trial " << trial;
+      }
+    }
+  }
+  std::printf("%s: %d circle bounds, %d proven at half the sampled minimum, %d within 1e-6 of the spine's\n", k.name,
+              tries, proven_half, proven_close);
+  EXPECT_GT(tries, 50);
+  EXPECT_GT(proven_half, tries * 9 / 10);
+  EXPECT_GT(proven_close, tries / 2);
+}
+
 // The box bounds of the local proofs (patch_box), sampled: every point of the
 // box within its ball, and along straight parameter paths from the centre the
 // speed (central differences) and the acceleration (second differences) within
