@@ -22,6 +22,20 @@ constexpr int kMaxDepth = 40;
 // Arcs turning less than this (radians) are fitted by the chord (fit_curve_span).
 constexpr double kFlatSweep = 1e-7;
 
+// The longest leaf of an exact line or arc, as a fraction of the profile's
+// extent: 1/4 at eps 1e-3 of the extent, halved every two decades of eps
+// (1/8 at 1e-5, 1/16 at 1e-7), within [1/64, 1/4]. A long exact leaf costs
+// the traversal where it meets small fits (its disk is loose by half its
+// length; the query's fit spine bound recovers most of that), a short one
+// costs nodes everywhere: measured on the motion probe (M instructions for
+// 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6) with 1/16 at every eps
+// 88.3 / 76.4 / 147.2 / 121.4, 1/8 86.4 / 75.1 / 149.1 / 120.0, 1/4 88.4 /
+// 72.9 / 155.7 / 123.7, 1/32 97.6 / 84.2 / 147.5 / 130.4.
+double exact_fraction(double eps, double extent) {
+  if (!(extent > 0) || !(eps > 0)) return 1.0 / 16;
+  return std::clamp(0.25 * std::pow(1e3 * eps / extent, std::log(2.0) / std::log(100.0)), 1.0 / 64, 0.25);
+}
+
 // Builds nodes into `tree`. Node, fit and pending indices are global: those
 // below the base counts belong to a shared tree that is never written (a lazy
 // tree's own nodes, when a query's view expands them), the rest to `tree`.
@@ -332,17 +346,18 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
   // Rounding allowance: end points, tangents and the stored arcs each carry a
   // few ulp of the coordinates; 64 ulp of the largest one covers the dozen
   // operations between the input and a stored arc with room to spare.
-  // Exact pieces: at most 1/16 of the profile's extent per leaf. The extent
-  // of the curve, not of its points (profile_box): an arc given by three
-  // points may bulge far past them (a fuzzed case's arc through (0, -2),
-  // (2, 1e8) and (0, 2) runs once round a circle of radius 2.5e15; split to
-  // 1/16 of its points' extent it made 2.5e9 leaves, 10 GB in 15 s). The
+  // Exact pieces: at most exact_fraction of the profile's extent per leaf
+  // (1/64 to 1/4). The extent of the curve, not of its points (profile_box):
+  // an arc given by three points may bulge far past them (a fuzzed case's
+  // arc through (0, -2), (2, 1e8) and (0, 2) runs once round a circle of
+  // radius 2.5e15; split to 1/16 of its points' extent it made 2.5e9 leaves,
+  // 10 GB in 15 s). The
   // rounding allowance's scale too: the largest coordinate of the curve.
   Vec2 lo, hi;
   profile_box(profile, &lo, &hi);
   const double scale = profile.pieces.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
   const double extent = profile.pieces.empty() ? 0.0 : (hi - lo).norm();
-  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent / 16, tree};
+  Builder b{profile, eps, 64.0 * DBL_EPSILON * scale, extent * exact_fraction(eps, extent), tree};
   b.lazy = lazy;
   tree.exact_length = b.max_exact_length;
   if (!tree.spirals.empty()) {

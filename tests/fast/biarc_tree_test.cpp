@@ -6,9 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "core/case_io.h"
 #include "core/profile_check.h"
@@ -130,13 +134,29 @@ TEST(BiarcTree, RandomBsplinesProvenBoundCoversSampledHausdorff) {
   }
 }
 
-// Exact lines and arcs are halved until no leaf is longer than 1/16 of the
-// profile's extent (the diagonal of its control points' box): a span of length
-// L gives the smallest power of two n with L / n <= extent / 16 leaves.
-int exact_leaves(double length, double extent) {
+// Exact lines and arcs are halved until no leaf is longer than a fraction of
+// the profile's extent (the diagonal of its control points' box): 1/4 at eps
+// 1e-3 of the extent, halved every two decades of eps, within [1/64, 1/4]. A
+// span of length L gives the smallest power of two n with L / n <= that
+// length leaves.
+double exact_length(double eps, double extent) {
+  return extent * std::clamp(0.25 * std::pow(1e3 * eps / extent, std::log(2.0) / std::log(100.0)), 1.0 / 64, 0.25);
+}
+int exact_leaves(double length, double extent, double eps) {
   int n = 1;
-  while (length / n > extent / 16) n *= 2;
+  while (length / n > exact_length(eps, extent)) n *= 2;
   return n;
+}
+
+TEST(BiarcTree, ExactLeafLengthFollowsEps) {
+  Profile line;  // extent 2
+  line.pieces.push_back(line_piece({0, 0}, {0, 2}));
+  const double extent = 2.0;
+  for (const auto& [eps, fraction] : std::vector<std::pair<double, double>>{
+           {1e-3, 0.25}, {1e-5, 0.125}, {1e-7, 0.0625}, {1e-9, 1.0 / 32}, {1e-12, 1.0 / 64}, {1.0, 0.25}}) {
+    const BiarcTree tree = build_biarc_tree(line, eps * extent);
+    EXPECT_NEAR(tree.exact_length, fraction * extent, 1e-12) << "eps " << eps << " x extent";
+  }
 }
 
 TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
@@ -150,7 +170,7 @@ TEST(BiarcTree, LinesAndArcsAreExactLeaves) {
   const BiarcTree tree = build_biarc_tree(can, 1e-6, &st);
   EXPECT_EQ(st.spirals, 3);
   const double extent = std::hypot(1.0, 3.0);  // control points span r in [0, 1], z in [0, 3]
-  EXPECT_EQ(st.leaves, exact_leaves(1, extent) + exact_leaves(2, extent) + exact_leaves(M_PI / 2, extent));
+  EXPECT_EQ(st.leaves, exact_leaves(1, extent, 1e-6) + exact_leaves(2, extent, 1e-6) + exact_leaves(M_PI / 2, extent, 1e-6));
   EXPECT_LT(st.max_error, 1e-13);
   for (const BiarcFit& f : tree.fits) {
     EXPECT_EQ(f.arcs, 1);
@@ -219,13 +239,13 @@ TEST(BiarcTree, SpindleArcSplitAtExtremes) {
   // Each half of the spindle arc (radius sqrt 2, quarter turn each) against the
   // control points' box r in [0, sqrt 2 - 1], z in [0, 2].
   const double extent = std::hypot(r - 1, 2.0);
-  EXPECT_EQ(st.leaves, 2 * exact_leaves(r * M_PI / 4, extent));
+  EXPECT_EQ(st.leaves, 2 * exact_leaves(r * M_PI / 4, extent, 1e-4));
   check_tree(spindle, tree, 1e-4);
 }
 
 // An arc that bulges far past its three points: through (0, -2), (2, 1e8)
 // and (0, 2) it runs once round a circle of radius 2.5e15 touching the axis
-// (a fuzzed case). Its exact spans are split to 1/16 of the curve's extent,
+// (a fuzzed case). Its exact spans are split by the curve's extent,
 // not of its points' (2.5e9 leaves and 10 GB before), and the rounding
 // allowance follows the curve's largest coordinate.
 TEST(BiarcTree, ArcBulgingPastItsPointsIsSplitByItsOwnExtent) {
@@ -233,7 +253,7 @@ TEST(BiarcTree, ArcBulgingPastItsPointsIsSplitByItsOwnExtent) {
   p.pieces.push_back(arc_piece({0, -2}, {2, 1e8}, {0, 2}));
   BuildStats st;
   const BiarcTree tree = build_biarc_tree(p, 1e-5, &st);
-  EXPECT_LE(st.leaves, 64);
+  EXPECT_LE(st.leaves, 256);  // (about 140 leaves of 1/64 of the extent, the least fraction, round the circle)
   EXPECT_GE(tree.slack, 64 * DBL_EPSILON * 5e15 * 0.99);
   // The profile's size (its tolerances, the CLI's scales) is the curve's too:
   // r in [0, 5e15], z in [-2.5e15, 2.5e15].
@@ -306,7 +326,7 @@ TEST(BiarcTree, EmptyAndDegenerateProfiles) {
   point.pieces.push_back(line_piece({1, 1}, {0, 1}));
   const BiarcTree t2 = build_biarc_tree(point, 1e-3, &st);
   EXPECT_EQ(st.spirals, 1);
-  EXPECT_EQ(st.leaves, exact_leaves(1.0, 1.0));  // the unit line against the box [0, 1] x [1, 1]
+  EXPECT_EQ(st.leaves, exact_leaves(1.0, 1.0, 1e-3));  // the unit line against the box [0, 1] x [1, 1]
 }
 
 }  // namespace
