@@ -351,8 +351,8 @@ void rebuild_biarc_tree(const Profile& profile, double eps, BiarcTree& tree, Bui
   // an arc given by three points may bulge far past them (a fuzzed case's
   // arc through (0, -2), (2, 1e8) and (0, 2) runs once round a circle of
   // radius 2.5e15; split to 1/16 of its points' extent it made 2.5e9 leaves,
-  // 10 GB in 15 s). The
-  // rounding allowance's scale too: the largest coordinate of the curve.
+  // 10 GB in 15 s). The rounding allowance's scale too: the largest
+  // coordinate of the curve.
   Vec2 lo, hi;
   profile_box(profile, &lo, &hi);
   const double scale = profile.pieces.empty() ? 0.0 : std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());

@@ -479,12 +479,13 @@ Vec2 meridian_point(const Patch& P, double u, Vec2* qu = nullptr) {
   return meridian_point(P, u, std::cos(ang), std::sin(ang), qu);
 }
 
-// Unit vectors e1, e2 normal to P's axis: azimuths about it are measured from e1.
-void axis_frame(const Patch& P, Vec3* e1, Vec3* e2) {
-  const Vec3 any = std::abs(P.a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  *e1 = P.a.cross(any).normalized();
-  *e2 = P.a.cross(*e1);
+// Unit vectors e1, e2 normal to unit axis a: azimuths about it are measured from e1.
+void axis_frame(const Vec3& a, Vec3* e1, Vec3* e2) {
+  const Vec3 any = std::abs(a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  *e1 = a.cross(any).normalized();
+  *e2 = a.cross(*e1);
 }
+void axis_frame(const Patch& P, Vec3* e1, Vec3* e2) { axis_frame(P.a, e1, e2); }
 
 // Patch P cut into boxes (profile fraction x azimuth) by patches_apart and
 // patches_at_least: its frame, and the sizes their bounds need: |x_u| (the
@@ -1241,8 +1242,8 @@ bool spine_at_least(const Patch& W, const GaussWindow& win, const Circle3& spine
   const double need = cut + tube + margin;
   // The first point is the spine's nearest to the hint (where a pair that
   // cannot be cleared usually shows at once), the others follow around.
-  const Vec3 any = std::abs(spine.normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  Vec3 e1 = spine.normal.cross(any).normalized(), e2 = spine.normal.cross(e1);
+  Vec3 e1, e2;
+  axis_frame(spine.normal, &e1, &e2);
   if (hint) {
     Vec3 v = *hint - spine.center;
     v -= v.dot(spine.normal) * spine.normal;

@@ -954,9 +954,10 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // nearest the pair are taken again on each side that ended there, and a
     // descent on the new pair, up to 24 times while the pair gets closer
     // (at eps 1e-7 fits are short, and a pair sliding along a conformal
-    // contact or an edge crosses a fit at each step). (End points are met to the rounding of the coordinates, well
-    // within `round`; far from the origin a patch shorter than that is all
-    // ends, which only costs the steps.) Measured on the motion probe, M
+    // contact or an edge crosses a fit at each step). (End points are met
+    // to the rounding of the coordinates, well within `round`; far from the
+    // origin a patch shorter than that is all ends, which only costs the
+    // steps.) Measured on the motion probe, M
     // instructions for 600 queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6:
     // 117.7 / 95.5 / 242.8 / 177.1 -> 113.3 / 93.9 / 231.4 / 176.4 (local
     // boxes 45.8 -> 43.7 a query); first witnesses within tol of the answer,
@@ -1196,11 +1197,19 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       }
     }
     // A fit beside a part kSpineRatio or more times smaller (an exact line or
-    // arc, cut only to 1/16 of its profile, beside the small fits of a curve
-    // at a small eps): the fit's disk is loose by about half the fit's
-    // length, so every part of the other side within that of it would reach
-    // the leaf kernels. The fit's own patches against the small part's disk
-    // circle (patch_circle_at_least) bound the pair within the part's disk.
+    // arc, cut only to a fraction of the profile's extent, exact_fraction in
+    // fast/biarc_tree.cpp, beside the small fits of a curve at a small eps;
+    // pawn-pawn bench frame 248 at 1e-7: 349 leaf pairs, 1.4 ms, most of them
+    // small fits of one pawn's body against the other's neck and collar
+    // lines, settled far above the cut): the fit's disk is loose by about
+    // half the fit's length, so every part of the other side within that of
+    // it would reach the leaf kernels. The fit's own patches against the
+    // small part's disk circle (patch_circle_at_least) bound the pair within
+    // the part's disk. Measured on the motion probe, M instructions for 600
+    // queries at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6: 92.46 / 78.12 / 172.55 /
+    // 125.24 -> 88.43 / 76.49 / 147.48 / 121.49 (ratio 2 or 3 the same, 8:
+    // 91.6 at 1e-5; for inner parts only, 91.4 at 1e-5 but 144.1 at 1e-7;
+    // the small leaf's own patches' spines instead of its disk: 93.3 / 159.6).
     if (!e.tight && cut() < kInf) {
       const Part &ha = A.parts[e.a], &hb = B.parts[e.b];
       const bool a_big = ha.has_fit && ha.disk_r >= kSpineRatio * hb.disk_r;
