@@ -106,13 +106,13 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 
 // A proof that patches W and T are at least `cut` apart from a circle of T
 // alone, first T's major circle (a toroidal T): every point of T lies within
-// rho_T of that circle, so
-// dist(W, T) >= min over the circle of dist(y, W) - rho_T, a one-dimensional
-// minimum of a closed-form distance (W's, in y's meridian half-plane). Its
-// window is W's own: where T's full torus stays near the solid's true surface
-// (as it does beside the arc, within the fit's error there), the bound is about
-// the distance from W to the other solid, which a neighbour of the closest
-// pair clears by far where the full tori (patch_pair_quick) meet.
+// rho_T of that circle, so dist(W, T) >= min over the circle of dist(y, W) -
+// rho_T, a one-dimensional minimum of a closed-form distance (W's, in y's
+// meridian half-plane). Its window is W's own: where T's full torus stays
+// near the solid's true surface (as it does beside the arc, within the fit's
+// error there), the bound is about the distance from W to the other solid,
+// which a neighbour of the closest pair clears by far where the full tori
+// (patch_pair_quick) meet.
 // The circle is cut into arcs (quarters to start), bounded from the distances
 // at their ends: for any set, |y - m|^2 - dist(y)^2 is convex in y (a maximum
 // of functions affine in y), so along a chord of length L and middle m with

@@ -448,7 +448,6 @@ struct Solid {
     return best;
   }
 
-  // A genuine point of this solid's surface (the profile's first point at azimuth 0).
   // A few points of the surface (k = 0..kSurfacePoints-1): the profile's start
   // and end, the middles of its first and last pieces, at azimuth 0.
   static constexpr int kSurfacePoints = 4;
@@ -1040,13 +1039,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const double need = cut() + fit.eps + round;
     const Circle3 spine = X.disk_circle(x);
     const Vec3& hint = &X == &B ? res.point_b : res.point_a;
+    const Patch* W = F.fit_patches(fit);  // (a big fit meets many small parts in a row: made once)
     double least = kInf;
     for (int i = 0; i < fit.arcs; ++i) {
       if (fit.arc[i].length <= 0) continue;
       double lower = 0.0;
       int evals = 0;
-      const bool ok = patch_circle_at_least(make_patch(fit.arc[i], F.s.R, F.s.t), spine, x.disk_r, need, round,
-                                            kSpineBudget, &lower, &evals, have_witness ? &hint : nullptr);
+      const bool ok = patch_circle_at_least(W[i], spine, x.disk_r, need, round, kSpineBudget, &lower, &evals,
+                                            have_witness ? &hint : nullptr);
       st.spine_evals += evals;
       if (!ok) return -kInf;
       least = std::min(least, lower);
