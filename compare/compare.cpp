@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "compare/mesh_fcl.h"
@@ -271,12 +273,15 @@ void check_compare(const std::vector<std::string>& cases, const CompareOptions& 
     for (double t : o.tol) require_resolvable_tol(t, s.query_extent, file);
     for (double e : o.eps) {
       require_resolvable_eps(e, s.extent, file);
+      // Each shape's mesh alone, named by its first instance (planned once).
+      std::set<std::pair<std::size_t, double>> planned;
+      for (std::size_t i = 0; i < c.instances.size(); ++i) {
+        const auto key = std::make_pair(c.instances[i].solid, c.instances[i].time);
+        if (!used[i] || !planned.insert(key).second) continue;
+        require_meshes_within_limit({&shapes.at(key)}, e, file + ": instance " + quote(c.instances[i].name),
+                                    "use a larger --eps");
+      }
       std::vector<const Profile*> alive;
-      for (std::size_t i = 0; i < c.instances.size(); ++i)
-        if (used[i]) {
-          const Profile& p = shapes.at({c.instances[i].solid, c.instances[i].time});
-          require_meshes_within_limit({&p}, e, file + ": instance " + quote(c.instances[i].name), "use a larger --eps");
-        }
       for (const auto& [key, p] : shapes) alive.push_back(&p);
       require_meshes_within_limit(alive, e, file, "use a larger --eps");
     }
