@@ -1094,7 +1094,7 @@ ExactSolidResult solid_distance_exact(const Profile& a, const Pose& pose_a, cons
   // below ends at once.
   const char* ended = nullptr;  // the time budget or a stop request, when either ended the work
   auto out_of_time = [&] {
-    if (options.max_cpu_s > 0 && thread_cpu_ms() - t0 > 1e3 * options.max_cpu_s) ended = "CPU time budget";
+    if (past(1.0)) ended = "CPU time budget";
     if (options.stop && options.stop()) ended = "stop request";
     return ended != nullptr;
   };
