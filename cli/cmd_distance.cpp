@@ -344,15 +344,8 @@ void settle_tolerances(const Case& c, Options& o) {
   const double unit = default_unit(s);
   if (!o.eps_given) o.eps = std::max(1e-5 * unit, min_eps(s));
   if (!o.tol_given) o.tol = o.rel_tol > 0 ? min_tol(s) : std::max(1e-6 * unit, min_tol(s));
-  if (o.eps_given && o.eps < min_eps(s))
-    throw InputError(c.file + ": --eps " + fixed_digits(o.eps, 6) + " is below the smallest meaningful value " +
-                     digits_up(min_eps(s), 3) + " for this case (" + fixed_digits(kMinRelativeEps, 3) +
-                     " of its largest solid extent " + fixed_digits(s.extent, 6) + "; finer fits are lost in rounding)");
-  if (o.tol_given && o.tol < min_tol(s))
-    throw InputError(c.file + ": --tol " + fixed_digits(o.tol, 6) + " is below the smallest meaningful value " +
-                     digits_up(min_tol(s), 3) + " for this case (" + fixed_digits(kMinRelativeTol, 3) +
-                     " of the queries' extent " + fixed_digits(s.query_extent, 6) +
-                     ", |translation| + solid extent; narrower brackets are lost in rounding)");
+  if (o.eps_given) require_resolvable_eps(o.eps, s.extent, c.file);
+  if (o.tol_given) require_resolvable_tol(o.tol, s.query_extent, c.file);
 }
 
 void check_option(double v, const char* name, bool allow_zero) {

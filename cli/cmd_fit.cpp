@@ -73,11 +73,7 @@ void run(Options o, bool eps_given) {
   // double rounding resolves are refused (core/case_scale.h).
   const CaseScale scale = case_scale(c);
   if (!eps_given) o.eps = std::max(1e-4 * default_unit(scale), min_eps(scale));
-  if (o.eps < min_eps(scale))
-    throw InputError(o.file + ": --eps " + fixed_digits(o.eps, 6) + " is below the smallest meaningful value " +
-                     digits_up(min_eps(scale), 3) + " for this case (" + fixed_digits(kMinRelativeEps, 3) +
-                     " of its largest solid extent " + fixed_digits(scale.extent, 6) +
-                     "; finer fits are lost in rounding)");
+  require_resolvable_eps(o.eps, scale.extent, o.file);
   std::vector<SolidFit> fits;
   for (const SolidDef& solid : c.solids) {
     SolidFit f;

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/format.h"
+
 namespace revdist::cli {
 
 // A run that could not do its job for a reason that is neither the input's nor
@@ -58,11 +60,7 @@ std::string printable(const std::string& name, std::size_t max_len = 1000);
 
 // %.17g: enough digits that the double reads back exactly.
 std::string full(double v);
-// %.*g with the given significant digits, for tables.
-std::string fixed_digits(double v, int digits);
-// %.*g rounded towards -inf / +inf: a printed bracket still contains what the doubles do.
-std::string digits_down(double v, int digits);
-std::string digits_up(double v, int digits);
+// (fixed_digits, digits_down, digits_up: core/format.h.)
 
 // A plain text table: a header row and rows of cells, columns aligned.
 class Table {

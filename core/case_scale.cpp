@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include "core/format.h"
 #include "core/input_error.h"
 #include "core/profile_check.h"
 
@@ -22,27 +22,20 @@ double solid_extent(const SolidDef& s) {
   return extent;
 }
 
-namespace {
-// A number in a message: three significant digits.
-std::string g3(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
-}  // namespace
-
+// (The minimum is printed rounded up: the value printed is one that passes.)
 void require_resolvable_eps(double eps, double extent, const std::string& who) {
   if (eps >= kMinRelativeEps * extent) return;
-  throw InputError(who + ": --eps " + g3(eps) + " is below the smallest meaningful value " +
-                   g3(kMinRelativeEps * extent) + " (" + g3(kMinRelativeEps) + " of the extent " + g3(extent) +
-                   "; finer fits are lost in rounding)");
+  throw InputError(who + ": --eps " + fixed_digits(eps, 6) + " is below the smallest meaningful value " +
+                   digits_up(kMinRelativeEps * extent, 3) + " (" + fixed_digits(kMinRelativeEps, 3) +
+                   " of the solid extent " + fixed_digits(extent, 6) + "; finer fits are lost in rounding)");
 }
 
 void require_resolvable_tol(double tol, double query_extent, const std::string& who) {
   if (tol >= kMinRelativeTol * query_extent) return;
-  throw InputError(who + ": --tol " + g3(tol) + " is below the smallest meaningful value " +
-                   g3(kMinRelativeTol * query_extent) + " (" + g3(kMinRelativeTol) + " of the queries' extent " +
-                   g3(query_extent) + "; narrower brackets are lost in rounding)");
+  throw InputError(who + ": --tol " + fixed_digits(tol, 6) + " is below the smallest meaningful value " +
+                   digits_up(kMinRelativeTol * query_extent, 3) + " (" + fixed_digits(kMinRelativeTol, 3) +
+                   " of the queries' extent " + fixed_digits(query_extent, 6) +
+                   ", |translation| + solid extent; narrower brackets are lost in rounding)");
 }
 
 CaseScale case_scale(const Case& c) {

@@ -29,10 +29,10 @@ constexpr double kMinRelativeEps = 1e-12;
 constexpr double kMinRelativeTol = 2e-13;
 
 inline double min_eps(const CaseScale& s) { return kMinRelativeEps * s.extent; }
-// InputError naming `who` when eps < kMinRelativeEps * extent (compare, bench).
+// InputError naming `who` when eps < kMinRelativeEps * extent (distance, fit, scene, compare, bench).
 void require_resolvable_eps(double eps, double extent, const std::string& who);
 inline double min_tol(const CaseScale& s) { return kMinRelativeTol * s.query_extent; }
-// InputError naming `who` when tol < kMinRelativeTol * query_extent (compare, scene).
+// InputError naming `who` when tol < kMinRelativeTol * query_extent (distance, scene, compare).
 void require_resolvable_tol(double tol, double query_extent, const std::string& who);
 
 // The unit that scales the default eps and tol: 1 for models whose largest profile size
