@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 

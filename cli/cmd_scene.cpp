@@ -5,17 +5,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
 #include "cli/output.h"
-#include "core/case_scale.h"
 #include "compare/scene_gen.h"
 #include "core/case_io.h"
+#include "core/case_scale.h"
 #include "core/input_error.h"
 #include "core/json_util.h"
 #include "fast/scene/scene.h"

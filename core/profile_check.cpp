@@ -86,9 +86,6 @@ double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Ve
                    point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
 }
 
-// Max distance of the control points from the chord: the segment lies in their hull, so
-// within this of the chord; and since it runs from one chord end to the other inside
-// that band, every chord point is within it of the segment too (Hausdorff bound).
 double polygon_length(const BezierSegment& s) {
   double l = 0;
   for (std::size_t i = 1; i < s.points.size(); ++i) l += (s.points[i] - s.points[i - 1]).norm();

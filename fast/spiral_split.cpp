@@ -25,7 +25,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-
 // The functions whose signs the lens hypotheses need, on one rational Bezier
 // segment of a piece, as polynomials in the segment's parameter t in [0, 1]
 // (u = u0 + t (u1 - u0), so d/dt = (u1 - u0) d/du keeps every sign). With the
