@@ -11,26 +11,6 @@ namespace revdist {
 
 namespace {
 
-// Distance from q to an arc or segment.
-double arc_distance(const Arc2& a, const Vec2& q) {
-  const Vec2 p0 = a.start, p1 = a.end();
-  if (a.straight()) {
-    const Vec2 d = p1 - p0;
-    const double l2 = d.squaredNorm();
-    const double s = l2 > 0 ? std::clamp((q - p0).dot(d) / l2, 0.0, 1.0) : 0.0;
-    return (q - (p0 + s * d)).norm();
-  }
-  const Vec2 c = a.center();
-  const double rho = 1.0 / std::abs(a.curvature);
-  const Vec2 v = q - c, d0 = a.start - c;
-  double phi = std::atan2(d0.x() * v.y() - d0.y() * v.x(), d0.dot(v));
-  const double sweep = a.curvature * a.length;
-  if (sweep < 0) phi = -phi;
-  if (phi < 0) phi += 2 * M_PI;
-  if (phi <= std::abs(sweep)) return std::abs(v.norm() - rho);
-  return std::min((q - p0).norm(), (q - p1).norm());
-}
-
 // Crossings of the ray q + t d (t > 0) with the arc: 0, 1 or 2, or -1 when the
 // ray passes within `tol` of one of its end points or touches it (the count
 // would then depend on rounding; the caller tries another direction).
@@ -117,7 +97,7 @@ Side profile_side(BiarcTreeView& tree, const Vec2& q, double margin) {
       if (n.fit < 0) return Side::unknown;
       const BiarcFit& f = tree.fit(n.fit);
       for (int k = 0; k < f.arcs; ++k)
-        if (!(arc_distance(f.arc[k], q) > margin + f.eps)) return Side::unknown;
+        if (!(f.arc[k].distance(q) > margin + f.eps)) return Side::unknown;
       for (int k = 0; k < f.arcs && !ambiguous; ++k) {
         if (f.arc[k].length <= 0) continue;
         const int c = arc_crossings(f.arc[k], q, d, tol);

@@ -397,6 +397,50 @@ struct Solid {
     return fit(parts[i]);
   }
 
+  // The fit nearest world point x, by a branch-and-bound search of the
+  // disks (each part is within its disk: |q - centre| - radius bounds its
+  // distance from q) from the last fit found, against the fits' arcs in the
+  // meridian half-plane (a point's distance to a surface of revolution is its
+  // meridian point's to the profile). Where disks overlap (an exact line's
+  // long leaf beside a curve's short fits) nearest_fit's greedy descent, and
+  // its shortcut to the last leaf, can return a fit that is not the nearest.
+  BiarcFit closest_fit(const Vec3& x) {
+    const Vec2 q = meridian(x);
+    long refined = 0;  // tree nodes only, as in nearest_fit
+    std::int32_t best = last_leaf;
+    double best_d = best >= 0 ? fit_distance(fit(parts[best]), q) : kInf;
+    struct Item {
+      std::int32_t i;
+      double lb;
+    };
+    constexpr int kStack = 128;  // (a deeper tree only loses the search's farther branches)
+    Item stack[kStack];
+    int n = 0;
+    stack[n++] = {0, (q - parts[0].disk_c).norm() - parts[0].disk_r};
+    while (n > 0) {
+      const Item it = stack[--n];
+      if (it.lb >= best_d || it.i == best) continue;
+      if (parts[it.i].has_fit) {
+        if (const double d = fit_distance(fit(parts[it.i]), q); d < best_d) best_d = d, best = it.i;
+        continue;
+      }
+      const std::int32_t c = split(it.i, &refined);
+      Item near{c, (q - parts[c].disk_c).norm() - parts[c].disk_r};
+      Item far{c + 1, (q - parts[c + 1].disk_c).norm() - parts[c + 1].disk_r};
+      if (far.lb < near.lb) std::swap(near, far);
+      if (far.lb < best_d && n + 2 <= kStack) stack[n++] = far;  // popped after near's subtree
+      if (near.lb < best_d) stack[n++] = near;
+    }
+    last_leaf = best;
+    return fit(parts[best]);
+  }
+  // The distance from meridian point q to fit f's arcs.
+  static double fit_distance(const BiarcFit& f, const Vec2& q) {
+    double d = f.arc[0].distance(q);
+    if (f.arcs == 2) d = std::min(d, f.arc[1].distance(q));
+    return d;
+  }
+
   // The patches of the fit nearest_patch saw last: the witness's rounds
   // come back to the same fit, and a patch costs a sine and cosine.
   // (Measured on the motion probe at eps 1e-5: 134.9 -> 133.9 M
@@ -627,14 +671,22 @@ class EntryHeap {
 // The query's queue of node pairs. Pairs whose lower bound is above 0 are
 // taken least bound first (Algorithm 2's order). A bound at or below 0 (the
 // pairs' bounding tori meet) tells nothing of where the contact is, and
-// every such pair is taken before any other while the cut is above 0 (none
-// of them can be retired by its bound): those are taken closest centre
+// every such pair is taken before any other: those are taken closest centre
 // circles first (`centre`: the bound plus kKeyDisks of both disk radii), which
 // reaches the leaf pairs at the contact first, and between overlapping solids
 // a crossing pair. A pair taken so reports -inf as its bound: the queue's stop
-// test (the least bound left reaches the cut) stays exact. Once the cut is at
-// most 0 (an upper bound within tol of touching) every pair is ordered by its
-// bound again (by_bound_only).
+// test (the least bound left reaches the cut) stays exact, and once the cut
+// is at most 0 (an upper bound within tol of touching) the loop retires such
+// a pair when its own bound reaches the cut. (Until 2026-11 the queue went
+// back to the bound order there: where a first witness near a crossing
+// comes within tol of touching and its probes fail, the bound order takes
+// the pairs of most overlap first, not those at the crossing. The bottles of
+// solid_overlap_crossing_key_bottles.json, whose first witness now lands
+// 4.6e-7 from the crossing: 121 node pairs before the overlap is proven, 12
+// in the centre order. Motion probe, M instructions for 600 queries at eps
+// 1e-5 / 1e-3 / 1e-7 / tol 1e-6: 86.69 / 70.67 / 142.73 / 119.30 -> 86.84 /
+// 70.87 / 142.92 / 119.43; 30000 queries, least of 3, the overlap frames'
+// p99 at eps 1e-5 85.6 -> 84.6 us.)
 class PairQueue {
  public:
   PairQueue(std::vector<Entry>& by_bound, std::vector<Entry>& by_centre) : bound_(by_bound), centre_(by_centre) {}
@@ -651,13 +703,13 @@ class PairQueue {
     else bound_.pop();
   }
   void push(const Entry& e, double centre) {
-    if (e.lb <= 0 && centre_order_) centre_.push({centre, e.a, e.b, e.tight});
+    if (e.lb <= 0) centre_.push({centre, e.a, e.b, e.tight});
     else bound_.push(e);
   }
   // Whether a pair of bound lb and centre key `centre`, pushed now, would be
   // the next one taken.
   bool would_be_next(double lb, double centre) const {
-    if (lb <= 0 && centre_order_) return centre_.empty() || centre <= centre_.top().lb;
+    if (lb <= 0) return centre_.empty() || centre <= centre_.top().lb;
     return centre_.empty() && (bound_.empty() || lb <= bound_.top().lb);
   }
   // The least bound of the pairs left (-inf while some are taken by their centre key).
@@ -665,21 +717,9 @@ class PairQueue {
     return !centre_.empty() ? -std::numeric_limits<double>::infinity()
            : bound_.empty() ? std::numeric_limits<double>::infinity() : bound_.top().lb;
   }
-  // Every pair by its bound from now on; bound_of(a, b) gives the bound of each pair moved.
-  template <class Bound>
-  void by_bound_only(Bound bound_of) {
-    centre_order_ = false;
-    while (!centre_.empty()) {
-      const Entry e = centre_.top();
-      centre_.pop();
-      bound_.push({bound_of(e.a, e.b), e.a, e.b, false});
-    }
-  }
-  bool centre_order() const { return centre_order_; }
 
  private:
   EntryHeap bound_, centre_;
-  bool centre_order_ = true;
 };
 
 // A lower bound on the distance between the fits of a pair compared (before
@@ -972,6 +1012,18 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // other point comes back to the same fit there): first witnesses within
     // tol of the answer 18481 -> 19317 of 30000, but 145.97 M at 1e-7 and
     // 1-2 % more at the other eps.)
+    // The steps take the nearest fits by closest_fit's search, not by
+    // nearest_fit's greedy descent, which near a long exact leaf returns the
+    // leaf whose disk holds the point (and at a spiral's end inside a piece
+    // the same fit again). Measured on the motion probe: first witnesses
+    // more than 1e-4 above the answer, of 30000 queries at eps 1e-7, 9159 ->
+    // 2754 (1e-5: 9553; 1e-3: 10073 before); M instructions for 600 queries
+    // at eps 1e-5 / 1e-3 / 1e-7 / tol 1e-6 86.88 / 73.59 / 143.39 / 120.30
+    // -> 86.36 / 70.53 / 142.15 / 118.91; 30000 queries, least of 3, p90 at
+    // eps 1e-3 / 1e-5 / 1e-7 22.7 / 28.3 / 54.3 -> 20.8 / 27.2 / 53.7 us,
+    // proven overlaps' p90 at 1e-3 15.0 -> 12.0. (The search in the rounds
+    // too: 91.81 / 75.95 / 148.29 / 124.05; in their first only: 86.65 /
+    // 71.33 / 142.94 / 119.33.)
     {
       auto at_end = [&](const Patch& p, const Vec3& w) {
         const Vec2 q = patch_local(p, w);
@@ -984,8 +1036,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         BiarcFit nfx = fx, nfy = fy;
         Patch npx = px, npy = py;
         Vec3 nx = x;  // the descent's start on A's side
-        if (end_x) nfx = A.nearest_fit(y), npx = A.nearest_patch(nfx, y, &nx);
-        if (end_y) nfy = B.nearest_fit(nx), npy = B.nearest_patch(nfy, nx);
+        if (end_x) nfx = A.closest_fit(y), npx = A.nearest_patch(nfx, y, &nx);
+        if (end_y) nfy = B.closest_fit(nx), npy = B.nearest_patch(nfy, nx);
         if (same(npx, px) && same(npy, py)) break;
         Vec3 xs, ys2;
         const double d = patch_pair_descent(npx, npy, nx, 1e-3 * opt.tol, &xs, &ys2);
@@ -1157,8 +1209,6 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   };
 
   while (!heap.empty()) {
-    if (heap.centre_order() && cut() <= 0)
-      heap.by_bound_only([&](std::int32_t a, std::int32_t b) { return cheap_bound(axes, A.parts[a], B.parts[b]) - round; });
     const Entry e = heap.top();
     // A cold query's first witness, at the first leaf pair (the pair is
     // taken again with the upper bound it gives).
@@ -1172,6 +1222,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       break;
     }
     heap.pop();
+    if (e.lb == -kInf && cut() <= 0) {  // taken by its centre key: its own bound (PairQueue)
+      const double lb = cheap_bound(axes, A.parts[e.a], B.parts[e.b]) - round;
+      if (lb >= cut()) {
+        settled_lb = std::min(settled_lb, lb);
+        continue;
+      }
+    }
     // Inner pairs too once the query has popped kTightInner pairs: where the
     // closed-form bound of inner pairs is loose (circles about perpendicular
     // axes: two linked rings of a scene popped 4187 node pairs for 92 leaf
