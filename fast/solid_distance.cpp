@@ -398,10 +398,9 @@ struct Solid {
   }
 
   // The fit nearest world point x, by a branch-and-bound search of the
-  // disks (each part is within its disk: |q - centre| - radius bounds its
-  // distance from q) from the last fit found, against the fits' arcs in the
-  // meridian half-plane (a point's distance to a surface of revolution is its
-  // meridian point's to the profile). Where disks overlap (an exact line's
+  // parts' capsules (capsule_lb) from the last fit found, against the fits'
+  // arcs in the meridian half-plane (a point's distance to a surface of
+  // revolution is its meridian point's to the profile). Where disks overlap (an exact line's
   // long leaf beside a curve's short fits) nearest_fit's greedy descent, and
   // its shortcut to the last leaf, can return a fit that is not the nearest.
   BiarcFit closest_fit(const Vec3& x) {
@@ -425,14 +424,24 @@ struct Solid {
         continue;
       }
       const std::int32_t c = split(it.i, &refined);
-      Item near{c, (q - parts[c].disk_c).norm() - parts[c].disk_r};
-      Item far{c + 1, (q - parts[c + 1].disk_c).norm() - parts[c + 1].disk_r};
+      Item near{c, capsule_lb(parts[c], q)};
+      Item far{c + 1, capsule_lb(parts[c + 1], q)};
       if (far.lb < near.lb) std::swap(near, far);
       if (far.lb < best_d && n + 2 <= kStack) stack[n++] = far;  // popped after near's subtree
       if (near.lb < best_d) stack[n++] = near;
     }
     last_leaf = best;
     return fit(parts[best]);
+  }
+  // A lower bound on the distance from meridian point q to part p: to its
+  // capsule (closer than its disk's for a long thin part; closest_fit: M
+  // instructions for the motion probe's 600 queries at eps 1e-7 142.15 ->
+  // 140.83, the others within 0.2 %).
+  static double capsule_lb(const Part& p, const Vec2& q) {
+    const Vec2 d = p.seg_b - p.seg_a;
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((q - p.seg_a).dot(d) / l2, 0.0, 1.0) : 0.0;
+    return (q - (p.seg_a + t * d)).norm() - p.cap_r;
   }
   // The distance from meridian point q to fit f's arcs.
   static double fit_distance(const BiarcFit& f, const Vec2& q) {
