@@ -63,6 +63,10 @@ constexpr long kTightInner = 256;
 // A fit part this many times the other part's disk radius is bounded by its
 // own patches against that part's disk circle (fit_spine_bound) when popped.
 constexpr double kSpineRatio = 4.0;
+// A fit's arc is taken as a sphere zone (sphere_bound) when its centre is
+// within this fraction of its radius of the axis (rounding of an arc given
+// on the axis: the bound subtracts the offset).
+constexpr double kSphereOff = 1e-9;
 // A pair of points whose surfaces may cross near them gets the steps across
 // (Solid::across, the overlap probe) when they are within this fraction of
 // the longer fit's chord of each other. Measured on the motion probe's 3000
@@ -448,6 +452,37 @@ struct Solid {
     double d = f.arc[0].distance(q);
     if (f.arcs == 2) d = std::min(d, f.arc[1].distance(q));
     return d;
+  }
+
+  // Fit f as sphere zones: each arc of it turns about a centre on the axis
+  // (the pawn's head, the lightmil's bulb), to within `off` of it. Gives,
+  // per arc of some length, the world centre, the radius and the centre's
+  // distance off the axis (every point of the arc's patch is within radius
+  // + off of the centre); false when an arc is not such a zone.
+  struct Zone {
+    Vec3 centre;
+    double radius;
+  };
+  bool sphere_zones(const BiarcFit& f, Zone* zones, int* n) const {
+    *n = 0;
+    for (int k = 0; k < f.arcs; ++k) {
+      const Arc2& a = f.arc[k];
+      if (!(a.length > 0)) continue;
+      if (a.straight()) return false;
+      const Vec2 c = a.center();
+      const double rho = 1.0 / std::abs(a.curvature), off = std::abs(c.x());
+      if (!(off <= kSphereOff * rho)) return false;
+      zones[(*n)++] = {s.R * Vec3(0, 0, c.y()) + s.t, rho + off};
+    }
+    return *n > 0;
+  }
+  // A lower bound on the distance from world point x to part p's true
+  // curve, revolved: its fit's arcs less the fit's eps, or its capsule.
+  double part_distance_from(const Part& p, const Vec3& x) {
+    const Vec2 q = meridian(x);
+    if (!p.has_fit) return capsule_lb(p, q);
+    const BiarcFit& f = fit(p);
+    return fit_distance(f, q) - f.eps;
   }
 
   // The patches of the fit nearest_patch saw last: the witness's rounds
@@ -1114,6 +1149,29 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     }
     return least - fit.eps - round;
   };
+  // A lower bound on the distance between parts pa of A and pb of B from
+  // either's fit when its arcs are sphere zones (Solid::sphere_zones): a
+  // point of a zone is within its radius of the centre, so at least the
+  // centre's distance from the other part less that radius away from it;
+  // -inf when neither fit is such.
+  auto sphere_bound = [&](const Part& pa, const Part& pb) {
+    double best = -kInf;
+    for (int side = 0; side < 2; ++side) {
+      Solid& F = side == 0 ? A : B;
+      Solid& X = side == 0 ? B : A;
+      const Part& f = side == 0 ? pa : pb;
+      const Part& x = side == 0 ? pb : pa;
+      if (!f.has_fit) continue;
+      const BiarcFit& fit = F.fit(f);
+      Solid::Zone zones[2];
+      int n = 0;
+      if (!F.sphere_zones(fit, zones, &n)) continue;
+      double least = kInf;
+      for (int k = 0; k < n; ++k) least = std::min(least, X.part_distance_from(x, zones[k].centre) - zones[k].radius);
+      best = std::max(best, least - fit.eps - round);
+    }
+    return best;
+  };
   heap.push({cheap_bound(axes, A.parts[0], B.parts[0]) - round, 0, 0, false}, 0.0);
   double settled_lb = kInf;  // min lower bound over pairs retired without a split
   // Lower bounds on the distance between the fits of the pairs compared so
@@ -1259,6 +1317,19 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       if (lb >= cut()) {
         ++st.hull_parts;
         settled_lb = std::min(settled_lb, std::max(e.lb, lb));
+        continue;
+      }
+    }
+    // A fit whose arcs are sphere zones (sphere_zones: the pawn's head, the
+    // lightmil's bulb) is at least as far from the other part as the
+    // spheres: the distance of each centre from that part less the radius.
+    // In closed form, and exact up to the fits' eps where the other part is
+    // a fit, where the other bounds of a pair with a long exact arc are
+    // loose by its disk (fit_spine_bound: by the other part's disk).
+    if (cut() < kInf) {
+      if (const double lb = sphere_bound(A.parts[e.a], B.parts[e.b]); lb >= cut()) {
+        ++st.sphere_parts;
+        settled_lb = std::min(settled_lb, lb);
         continue;
       }
     }

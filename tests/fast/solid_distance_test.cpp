@@ -827,6 +827,22 @@ TEST(SolidDistanceWork, LinkedRingsDoNotPopEveryInnerPair) {
 // the cold ones, certificates hold, and while the tables overlap the previous
 // shared point, while it is still inside the other solid, proves it before any
 // node pair.
+// The pawn's head is a sphere (an arc about a centre on the axis), 0.0353
+// from a bottle's shoulder along which the distance varies slowly (motion
+// probe frame 4086). At eps 1e-7 the head's exact-arc leaves, 0.0245 in disk
+// radius, met 28 of the shoulder's short fits: 67 leaf pairs, every one
+// settled by its kernel. The sphere-zone bound (each centre's distance from
+// the other part less the radius) settles them in closed form.
+TEST(SolidDistanceWork, SphereZonesSettleTheirPairsInClosedForm) {
+  Loaded L(source_path("cases/regressions/solid_sphere_zone_pawn_bottle.json"), 1e-7);
+  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
+  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
+  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "pawn head - bottle shoulder");
+  EXPECT_TRUE(r.converged) << describe(r);
+  EXPECT_GT(r.stats.sphere_parts, 0) << describe(r);
+  EXPECT_LE(r.stats.leaf_pairs, 8) << describe(r);
+}
+
 TEST(SolidDistanceWarmStart, FollowsAMotionOutOfOverlap) {
   Loaded L(source_path("cases/regressions/solid_overlap_sharp_edge_tables.json"), kEps);
   const PosedSolid& A = L.m.instances[0];
