@@ -63,10 +63,14 @@ constexpr long kTightInner = 256;
 // A fit part this many times the other part's disk radius is bounded by its
 // own patches against that part's disk circle (fit_spine_bound) when popped.
 constexpr double kSpineRatio = 4.0;
-// A fit's arc is taken as a sphere zone (sphere_bound) when its centre is
-// within this fraction of its radius of the axis (rounding of an arc given
-// on the axis: the bound subtracts the offset).
-constexpr double kSphereOff = 1e-9;
+// A fit's arc is taken as a sphere zone or a cylinder (Solid::axis_zones,
+// zone_bound) when its centre is within this fraction of its radius of the
+// axis, or its ends' distances from the axis within this fraction of each
+// other (rounding of input given on the axis or parallel to it: the bound
+// takes the offset, or the larger distance).
+constexpr double kZoneOff = 1e-9;
+// Evaluations for a cylinder's axis segment in zone_bound.
+constexpr int kZoneBudget = 24;
 // A pair of points whose surfaces may cross near them gets the steps across
 // (Solid::across, the overlap probe) when they are within this fraction of
 // the longer fit's chord of each other. Measured on the motion probe's 3000
@@ -454,25 +458,35 @@ struct Solid {
     return d;
   }
 
-  // Fit f as sphere zones: each arc of it turns about a centre on the axis
-  // (the pawn's head, the lightmil's bulb), to within `off` of it. Gives,
-  // per arc of some length, the world centre, the radius and the centre's
-  // distance off the axis (every point of the arc's patch is within radius
-  // + off of the centre); false when an arc is not such a zone.
+  // Fit f as axis zones: each arc of it within a radius of a piece of the
+  // solid's axis, tightly. A sphere zone (an arc about a centre on the axis:
+  // the pawn's head, the lightmil's bulb) is within its radius, plus the
+  // centre's offset from the axis, of the centre; a cylinder (a segment at
+  // one distance r from the axis: the table's column, the bottle's body) is
+  // within r of the axis between its end heights. Gives, per arc of some
+  // length, the axis piece in the world (a0 == a1 for a sphere) and the
+  // radius; false when an arc is neither (within kZoneOff of its size).
   struct Zone {
-    Vec3 centre;
+    Vec3 a0, a1;
     double radius;
   };
-  bool sphere_zones(const BiarcFit& f, Zone* zones, int* n) const {
+  bool axis_zones(const BiarcFit& f, Zone* zones, int* n) const {
     *n = 0;
     for (int k = 0; k < f.arcs; ++k) {
       const Arc2& a = f.arc[k];
       if (!(a.length > 0)) continue;
-      if (a.straight()) return false;
+      if (a.straight()) {
+        const Vec2 e = a.end();
+        const double r = std::max(a.start.x(), e.x());
+        if (!(std::abs(e.x() - a.start.x()) <= kZoneOff * r)) return false;
+        zones[(*n)++] = {s.R * Vec3(0, 0, a.start.y()) + s.t, s.R * Vec3(0, 0, e.y()) + s.t, r};
+        continue;
+      }
       const Vec2 c = a.center();
       const double rho = 1.0 / std::abs(a.curvature), off = std::abs(c.x());
-      if (!(off <= kSphereOff * rho)) return false;
-      zones[(*n)++] = {s.R * Vec3(0, 0, c.y()) + s.t, rho + off};
+      if (!(off <= kZoneOff * rho)) return false;
+      const Vec3 centre = s.R * Vec3(0, 0, c.y()) + s.t;
+      zones[(*n)++] = {centre, centre, rho + off};
     }
     return *n > 0;
   }
@@ -820,6 +834,50 @@ double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb
   return circle3_circle3_distance_value(A.disk_circle(pa), A.frame, B.disk_circle(pb), B.frame) - pa.disk_r - pb.disk_r;
 }
 
+// A lower bound on the least of dist over the segment p0 p1, where dist is a
+// point's distance from a set (1-Lipschitz), proven at least `need`, or -inf
+// when a point of the segment is closer than that or the proof takes more
+// than `budget` evaluations. Between two points at distances d0 and d1, L
+// apart, the set avoids both open balls, so the segment between them is at
+// least sqrt(chord2) from it (the rim of the balls' meeting; the nearer
+// ball's radius where one ball covers the other's centre). p0 == p1: one
+// evaluation.
+template <class Dist>
+double segment_at_least(const Vec3& p0, const Vec3& p1, double need, int budget, Dist dist) {
+  struct End {
+    Vec3 y;
+    double d;
+  };
+  const End a{p0, dist(p0)};
+  if (!(a.d >= need)) return -kInf;
+  if (p0 == p1) return a.d;
+  const End b{p1, dist(p1)};
+  if (!(b.d >= need)) return -kInf;
+  constexpr int kOpen = 48;
+  std::pair<End, End> open[kOpen];
+  int n = 0, evals = 2;
+  open[n++] = {a, b};
+  double least = kInf;
+  while (n > 0) {
+    const auto [u, v] = open[--n];
+    const double d0 = std::max(u.d, 0.0), d1 = std::max(v.d, 0.0);
+    const double L2 = (v.y - u.y).squaredNorm(), q0 = d0 * d0, q1 = d1 * d1, dq = q1 - q0;
+    const double chord2 = std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - 0.25 * dq * dq / L2;
+    if (const double bound = std::sqrt(std::max(0.0, chord2)); bound >= need) {
+      least = std::min(least, bound);
+      continue;
+    }
+    if (evals >= budget || n + 2 > kOpen) return -kInf;
+    const Vec3 mid = 0.5 * (u.y + v.y);
+    const End m{mid, dist(mid)};
+    ++evals;
+    if (!(m.d >= need)) return -kInf;
+    open[n++] = {u, m};
+    open[n++] = {m, v};
+  }
+  return least;
+}
+
 // Where a cold query's first witness starts, on leaf parts a of A and b of
 // B: a point of b's centre circle from alternating projection between the
 // two centre circles, in closed form, from B's point nearest A's centre
@@ -1150,11 +1208,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     return least - fit.eps - round;
   };
   // A lower bound on the distance between parts pa of A and pb of B from
-  // either's fit when its arcs are sphere zones (Solid::sphere_zones): a
-  // point of a zone is within its radius of the centre, so at least the
-  // centre's distance from the other part less that radius away from it;
-  // -inf when neither fit is such.
-  auto sphere_bound = [&](const Part& pa, const Part& pb) {
+  // either's fit when its arcs are axis zones (Solid::axis_zones): a point
+  // of a zone is within its radius of the zone's piece of axis, so at least
+  // that piece's distance from the other part less the radius away from it;
+  // -inf when neither fit is such, or when a cylinder's segment cannot be
+  // shown at least `need` from the other part (its points' distances, and
+  // between two points the chord lemma of the spine bounds: the other part
+  // avoids both points' balls). A sphere zone is one evaluation.
+  auto zone_bound = [&](const Part& pa, const Part& pb) {
     double best = -kInf;
     for (int side = 0; side < 2; ++side) {
       Solid& F = side == 0 ? A : B;
@@ -1165,9 +1226,15 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
       const BiarcFit& fit = F.fit(f);
       Solid::Zone zones[2];
       int n = 0;
-      if (!F.sphere_zones(fit, zones, &n)) continue;
+      if (!F.axis_zones(fit, zones, &n)) continue;
       double least = kInf;
-      for (int k = 0; k < n; ++k) least = std::min(least, X.part_distance_from(x, zones[k].centre) - zones[k].radius);
+      for (int k = 0; k < n && least > -kInf; ++k) {
+        const Solid::Zone& z = zones[k];
+        const double need = cut() + z.radius + fit.eps + round;
+        least = std::min(least, segment_at_least(z.a0, z.a1, need, kZoneBudget,
+                                                 [&](const Vec3& y) { return X.part_distance_from(x, y); }) -
+                                    z.radius);
+      }
       best = std::max(best, least - fit.eps - round);
     }
     return best;
@@ -1320,15 +1387,14 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         continue;
       }
     }
-    // A fit whose arcs are sphere zones (sphere_zones: the pawn's head, the
-    // lightmil's bulb) is at least as far from the other part as the
-    // spheres: the distance of each centre from that part less the radius.
-    // In closed form, and exact up to the fits' eps where the other part is
-    // a fit, where the other bounds of a pair with a long exact arc are
-    // loose by its disk (fit_spine_bound: by the other part's disk).
+    // A fit whose arcs are sphere zones or cylinders (axis_zones: the pawn's
+    // head, the table's column) is at least as far from the other part as
+    // their pieces of axis less their radii (zone_bound): exact up to the
+    // fits' eps where the other part is a fit, where the other bounds of a
+    // pair with a long exact leaf are loose by a disk's radius.
     if (cut() < kInf) {
-      if (const double lb = sphere_bound(A.parts[e.a], B.parts[e.b]); lb >= cut()) {
-        ++st.sphere_parts;
+      if (const double lb = zone_bound(A.parts[e.a], B.parts[e.b]); lb >= cut()) {
+        ++st.zone_parts;
         settled_lb = std::min(settled_lb, lb);
         continue;
       }

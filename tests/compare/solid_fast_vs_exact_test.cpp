@@ -167,10 +167,10 @@ const bool kRegistered = [] {
   for (const auto& [path, q] : queries_of(json_in("cases/regressions", "solid_")))
     add("SolidFastVsExactRegression", std::filesystem::path(path).stem().string() + "_q" + std::to_string(q),
         [path = path, q = q] { check_query(path, q, kRegressionBoxes); });
-  // The fit spine bound's and the sphere-zone bound's regressions also at the
+  // The fit spine bound's and the zone bound's regressions also at the
   // bench's finest eps, 1e-7 at tol 2e-7, where a long exact leaf meets small
   // curve fits (at 1e-5 the bounds' broken variants pass them).
-  for (const char* prefix : {"solid_fit_spine_", "solid_sphere_zone_"})
+  for (const char* prefix : {"solid_fit_spine_", "solid_sphere_zone_", "solid_cylinder_zone_"})
     for (const auto& [path, q] : queries_of(json_in("cases/regressions", prefix)))
       add("SolidFastVsExactRegression", std::filesystem::path(path).stem().string() + "_q" + std::to_string(q) + "_finest_eps",
           [path = path, q = q] { check_query(path, q, kRegressionBoxes, 1e-7, 2e-7); });

@@ -827,20 +827,24 @@ TEST(SolidDistanceWork, LinkedRingsDoNotPopEveryInnerPair) {
 // the cold ones, certificates hold, and while the tables overlap the previous
 // shared point, while it is still inside the other solid, proves it before any
 // node pair.
-// The pawn's head is a sphere (an arc about a centre on the axis), 0.0353
-// from a bottle's shoulder along which the distance varies slowly (motion
-// probe frame 4086). At eps 1e-7 the head's exact-arc leaves, 0.0245 in disk
-// radius, met 28 of the shoulder's short fits: 67 leaf pairs, every one
-// settled by its kernel. The sphere-zone bound (each centre's distance from
-// the other part less the radius) settles them in closed form.
-TEST(SolidDistanceWork, SphereZonesSettleTheirPairsInClosedForm) {
-  Loaded L(source_path("cases/regressions/solid_sphere_zone_pawn_bottle.json"), 1e-7);
-  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
-  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
-  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "pawn head - bottle shoulder");
-  EXPECT_TRUE(r.converged) << describe(r);
-  EXPECT_GT(r.stats.sphere_parts, 0) << describe(r);
-  EXPECT_LE(r.stats.leaf_pairs, 8) << describe(r);
+// Sphere zones and cylinders bound their pairs by their pieces of axis
+// (zone_bound). The pawn's head is a sphere (an arc about a centre on the
+// axis), 0.0353 from a bottle's shoulder along which the distance varies
+// slowly (motion probe frame 4086): at eps 1e-7 the head's exact-arc leaves,
+// 0.0245 in disk radius, met 28 of the shoulder's short fits, 67 leaf pairs
+// settled one by one by their kernels. The table's column is a cylinder
+// (a line at r = 0.08), 0.0256 from the pawn's waist (frame 6798): 26 leaf
+// pairs. With the zones' bounds, none in either.
+TEST(SolidDistanceWork, AxisZonesSettleTheirPairsByTheirPiecesOfAxis) {
+  for (const char* f : {"solid_sphere_zone_pawn_bottle", "solid_cylinder_zone_pawn_table"}) {
+    Loaded L(source_path(std::string("cases/regressions/") + f + ".json"), 1e-7);
+    const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
+    const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
+    check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, f);
+    EXPECT_TRUE(r.converged) << f << ": " << describe(r);
+    EXPECT_GT(r.stats.zone_parts, 0) << f << ": " << describe(r);
+    EXPECT_LE(r.stats.leaf_pairs, 4) << f << ": " << describe(r);
+  }
 }
 
 TEST(SolidDistanceWarmStart, FollowsAMotionOutOfOverlap) {
