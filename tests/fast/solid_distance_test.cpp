@@ -800,7 +800,8 @@ TEST(SolidDistanceOverlap, StepsAcrossTheCrossingProveIt) {
 // far from parallel, each circle past the other's plane and cylinder), and
 // the centre order took them in no order: 149 node pairs and 88 tight
 // bounds before the pair at the crossing. An estimate of the circles'
-// distance orders them: 8 node pairs.
+// distance orders them: 8 node pairs (12 since the first witness lands
+// within tol of the crossing and its probes fail, PairQueue).
 TEST(SolidDistanceOverlap, CentreKeyOrdersPairsTheClosedFormCannot) {
   Loaded L(source_path("cases/regressions/solid_overlap_crossing_key_bottles.json"), kEps);
   const SolidDistanceResult r = solid_distance(L.m.instances[0], L.m.instances[1], DistanceOptions{2 * kEps});
