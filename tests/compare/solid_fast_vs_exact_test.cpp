@@ -169,8 +169,9 @@ const bool kRegistered = [] {
         [path = path, q = q] { check_query(path, q, kRegressionBoxes); });
   // The fit spine bound's and the zone bound's regressions also at the
   // bench's finest eps, 1e-7 at tol 2e-7, where a long exact leaf meets small
-  // curve fits (at 1e-5 the bounds' broken variants pass them).
-  for (const char* prefix : {"solid_fit_spine_", "solid_sphere_zone_", "solid_cylinder_zone_"})
+  // curve fits (at 1e-5 the bounds' broken variants pass them), and the
+  // coarse first witness's, which only runs at such an eps.
+  for (const char* prefix : {"solid_fit_spine_", "solid_sphere_zone_", "solid_cylinder_zone_", "solid_coarse_witness_"})
     for (const auto& [path, q] : queries_of(json_in("cases/regressions", prefix)))
       add("SolidFastVsExactRegression", std::filesystem::path(path).stem().string() + "_q" + std::to_string(q) + "_finest_eps",
           [path = path, q = q] { check_query(path, q, kRegressionBoxes, 1e-7, 2e-7); });

@@ -848,6 +848,21 @@ TEST(SolidDistanceWork, AxisZonesSettleTheirPairsByTheirPiecesOfAxis) {
   }
 }
 
+// Two cups 3.46e-4 apart (motion probe frame 11667). At eps 1e-7 the first
+// witness's walk across the short leaves stopped at another contact, and with
+// that upper bound the query compared 14 leaf pairs and ran 5 full
+// enumerations. Started on the tree's fits of 1e-3 of the extent, then moved
+// to the leaves nearest (coarse_witness): 4 leaf pairs, no enumeration.
+TEST(SolidDistanceWork, CoarseFirstWitnessFindsTheContact) {
+  Loaded L(source_path("cases/regressions/solid_coarse_witness_cup_cup.json"), 1e-7);
+  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
+  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
+  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "two cups");
+  EXPECT_TRUE(r.converged) << describe(r);
+  EXPECT_EQ(r.stats.patch_pairs, 0) << describe(r);
+  EXPECT_LE(r.stats.leaf_pairs, 8) << describe(r);
+}
+
 TEST(SolidDistanceWarmStart, FollowsAMotionOutOfOverlap) {
   Loaded L(source_path("cases/regressions/solid_overlap_sharp_edge_tables.json"), kEps);
   const PosedSolid& A = L.m.instances[0];
