@@ -54,6 +54,7 @@ struct DistanceStats {
   long local_boxes = 0;  // boxes the local proof evaluated (settled or not)
   long hull_pairs = 0;   // patch pairs settled by their revolved arcs' hulls (patch_hull_bound), first
   long spine_pairs = 0;  // patch pairs settled by a spine bound (patch_spine_at_least), before the local proof
+  long node_fit_parts = 0;  // popped pairs of fine trees retired by their nodes' own fits (node_fits_bound)
   long zone_parts = 0;   // popped pairs retired by a fit's sphere zones or cylinders (their axis pieces' distances less the radii)
   long spine_parts = 0;  // popped pairs of a fit and a part 4x smaller given the fit's spine bound (retired or not)
   long spine_evals = 0;  // points of the spines the spine bounds evaluated (settled or not)

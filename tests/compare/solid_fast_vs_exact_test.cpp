@@ -102,7 +102,9 @@ std::uint64_t test_seed() {
 
 // A seeded random pose pair of two paper models: random unit quaternions, b's
 // frame origin at a random direction and centre distance in [0.5, 2.5] (some overlap).
-void check_random(int trial) {
+// eps and tol: the fast side's (the bench's finest, 1e-7 and 2e-7, reach the
+// paths of fine trees: the coarse first witness, the nodes' fits' bound).
+void check_random(int trial, double eps = kEps, double tol = kTol) {
   std::mt19937_64 g(test_seed() + static_cast<std::uint64_t>(trial));
   std::normal_distribution<double> N(0, 1);
   std::uniform_real_distribution<double> U(0.5, 2.5);
@@ -115,11 +117,11 @@ void check_random(int trial) {
   B.pose.translation = A.pose.translation + Vec3(N(g), N(g), N(g)).normalized() * U(g);
   c.instances = {A, B};
   c.queries = {{0, 1}};
-  const CaseModel model = build_case_model(c, kEps);
+  const CaseModel model = build_case_model(c, eps);
   char what[96];
-  std::snprintf(what, sizeof what, "random trial %d %s-%s", trial, A.name.c_str(), B.name.c_str());
+  std::snprintf(what, sizeof what, "random trial %d %s-%s eps %g", trial, A.name.c_str(), B.name.c_str(), eps);
   check_pair(what, profile_at(c.solids[A.solid], A.time), A.pose, model.instances[0],
-             profile_at(c.solids[B.solid], B.time), B.pose, model.instances[1]);
+             profile_at(c.solids[B.solid], B.time), B.pose, model.instances[1], ExactSolidOptions{}.max_boxes, tol);
 }
 
 std::vector<std::string> json_in(const std::string& dir, const std::string& prefix) {
@@ -170,13 +172,17 @@ const bool kRegistered = [] {
   // The fit spine bound's and the zone bound's regressions also at the
   // bench's finest eps, 1e-7 at tol 2e-7, where a long exact leaf meets small
   // curve fits (at 1e-5 the bounds' broken variants pass them), and the
-  // coarse first witness's, which only runs at such an eps.
-  for (const char* prefix : {"solid_fit_spine_", "solid_sphere_zone_", "solid_cylinder_zone_", "solid_coarse_witness_"})
+  // coarse first witness's and the nodes' fits' bound, which only run at such
+  // an eps.
+  for (const char* prefix :
+       {"solid_fit_spine_", "solid_sphere_zone_", "solid_cylinder_zone_", "solid_coarse_witness_", "solid_node_fits_"})
     for (const auto& [path, q] : queries_of(json_in("cases/regressions", prefix)))
       add("SolidFastVsExactRegression", std::filesystem::path(path).stem().string() + "_q" + std::to_string(q) + "_finest_eps",
           [path = path, q = q] { check_query(path, q, kRegressionBoxes, 1e-7, 2e-7); });
   for (int k = 0; k < kRandomTrials; ++k)
     add("SolidFastVsExactRandom", "trial" + std::to_string(k), [k] { check_random(k); });
+  for (int k = 0; k < kRandomTrials; ++k)
+    add("SolidFastVsExactRandom", "trial" + std::to_string(k) + "_finest_eps", [k] { check_random(100 + k, 1e-7, 2e-7); });
   return true;
 }();
 

@@ -863,6 +863,21 @@ TEST(SolidDistanceWork, CoarseFirstWitnessFindsTheContact) {
   EXPECT_LE(r.stats.leaf_pairs, 8) << describe(r);
 }
 
+// A pawn's body 0.0219 from a bottle's shoulder, their distance varying
+// slowly along both curves (motion probe frame 5867). At eps 1e-7 every pair
+// of short fits in the contact band was a leaf pair: 122 of them. The tree
+// nodes' own fits, far coarser than the leaves yet within 1 % of their
+// disks, prove whole blocks of them at once (node_fits_bound): none.
+TEST(SolidDistanceWork, NodeFitsSettleBlocksOfLeafPairs) {
+  Loaded L(source_path("cases/regressions/solid_node_fits_pawn_bottle.json"), 1e-7);
+  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
+  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
+  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "pawn body - bottle shoulder");
+  EXPECT_TRUE(r.converged) << describe(r);
+  EXPECT_GT(r.stats.node_fit_parts, 0) << describe(r);
+  EXPECT_LE(r.stats.leaf_pairs, 12) << describe(r);
+}
+
 TEST(SolidDistanceWarmStart, FollowsAMotionOutOfOverlap) {
   Loaded L(source_path("cases/regressions/solid_overlap_sharp_edge_tables.json"), kEps);
   const PosedSolid& A = L.m.instances[0];
