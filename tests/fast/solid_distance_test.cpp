@@ -828,6 +828,17 @@ TEST(SolidDistanceWork, LinkedRingsDoNotPopEveryInnerPair) {
 // the cold ones, certificates hold, and while the tables overlap the previous
 // shared point, while it is still inside the other solid, proves it before any
 // node pair.
+// A regression's first query at the bench's finest eps, 1e-7 at tol 2e-7,
+// with the checks of check_query, converged.
+SolidDistanceResult finest_eps_query(const std::string& file) {
+  Loaded L(source_path("cases/regressions/" + file + ".json"), 1e-7);
+  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
+  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
+  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, file);
+  EXPECT_TRUE(r.converged) << file << ": " << describe(r);
+  return r;
+}
+
 // Sphere zones and cylinders bound their pairs by their pieces of axis
 // (zone_bound). The pawn's head is a sphere (an arc about a centre on the
 // axis), 0.0353 from a bottle's shoulder along which the distance varies
@@ -838,11 +849,7 @@ TEST(SolidDistanceWork, LinkedRingsDoNotPopEveryInnerPair) {
 // pairs. With the zones' bounds, none in either.
 TEST(SolidDistanceWork, AxisZonesSettleTheirPairsByTheirPiecesOfAxis) {
   for (const char* f : {"solid_sphere_zone_pawn_bottle", "solid_cylinder_zone_pawn_table"}) {
-    Loaded L(source_path(std::string("cases/regressions/") + f + ".json"), 1e-7);
-    const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
-    const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
-    check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, f);
-    EXPECT_TRUE(r.converged) << f << ": " << describe(r);
+    const SolidDistanceResult r = finest_eps_query(f);
     EXPECT_GT(r.stats.zone_parts, 0) << f << ": " << describe(r);
     EXPECT_LE(r.stats.leaf_pairs, 4) << f << ": " << describe(r);
   }
@@ -854,11 +861,7 @@ TEST(SolidDistanceWork, AxisZonesSettleTheirPairsByTheirPiecesOfAxis) {
 // enumerations. Started on the tree's fits of 1e-3 of the extent, then moved
 // to the leaves nearest (coarse_witness): 4 leaf pairs, no enumeration.
 TEST(SolidDistanceWork, CoarseFirstWitnessFindsTheContact) {
-  Loaded L(source_path("cases/regressions/solid_coarse_witness_cup_cup.json"), 1e-7);
-  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
-  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
-  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "two cups");
-  EXPECT_TRUE(r.converged) << describe(r);
+  const SolidDistanceResult r = finest_eps_query("solid_coarse_witness_cup_cup");
   EXPECT_EQ(r.stats.patch_pairs, 0) << describe(r);
   EXPECT_LE(r.stats.leaf_pairs, 8) << describe(r);
 }
@@ -869,11 +872,7 @@ TEST(SolidDistanceWork, CoarseFirstWitnessFindsTheContact) {
 // nodes' own fits, far coarser than the leaves yet within 1 % of their
 // disks, prove whole blocks of them at once (node_fits_bound): none.
 TEST(SolidDistanceWork, NodeFitsSettleBlocksOfLeafPairs) {
-  Loaded L(source_path("cases/regressions/solid_node_fits_pawn_bottle.json"), 1e-7);
-  const PosedSolid &A = L.m.instances[0], &B = L.m.instances[1];
-  const SolidDistanceResult r = solid_distance(A, B, DistanceOptions{2e-7});
-  check_query(A, B, *L.samplers[0], *L.samplers[1], r, 2e-7, "pawn body - bottle shoulder");
-  EXPECT_TRUE(r.converged) << describe(r);
+  const SolidDistanceResult r = finest_eps_query("solid_node_fits_pawn_bottle");
   EXPECT_GT(r.stats.node_fit_parts, 0) << describe(r);
   EXPECT_LE(r.stats.leaf_pairs, 12) << describe(r);
 }
