@@ -1261,7 +1261,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     }
     return least - fit.eps - round;
   };
-  // A lower bound on the distance between parts pa of A and pb of B from
+  // A lower bound on the distance between parts qa of A and qb of B from
   // either's fit when its arcs are axis zones (Solid::axis_zones): a point
   // of a zone is within its radius of the zone's piece of axis, so at least
   // that piece's distance from the other part less the radius away from it;
@@ -1269,13 +1269,13 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // shown at least `need` from the other part (its points' distances, and
   // between two points the chord lemma of the spine bounds: the other part
   // avoids both points' balls). A sphere zone is one evaluation.
-  auto zone_bound = [&](const Part& pa, const Part& pb) {
+  auto zone_bound = [&](const Part& qa, const Part& qb) {
     double best = -kInf;
     for (int side = 0; side < 2; ++side) {
       Solid& F = side == 0 ? A : B;
       Solid& X = side == 0 ? B : A;
-      const Part& f = side == 0 ? pa : pb;
-      const Part& x = side == 0 ? pb : pa;
+      const Part& f = side == 0 ? qa : qb;
+      const Part& x = side == 0 ? qb : qa;
       if (!f.has_fit) continue;
       const BiarcFit& fit = F.fit(f);
       Solid::Zone zones[2];
@@ -1293,7 +1293,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     }
     return best;
   };
-  // A lower bound on the distance between parts pa of A and pb of B from
+  // A lower bound on the distance between parts ha of A and hb of B from
   // their own fits (a tree node at or below the spiral level has one, of a
   // proven error: BiarcTree), -inf when it is not proven at the cut: each
   // arc pair of the two fits by the hulls along the witness's direction or a
