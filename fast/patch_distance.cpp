@@ -1284,11 +1284,7 @@ bool spine_at_least(const Patch& W, const GaussWindow& win, const Circle3& spine
     const Arc arc = open[--n];
     const double L2 = (arc.b.y - arc.a.y).squaredNorm();
     const double sag = R - std::sqrt(std::max(0.0, R * R - 0.25 * L2));
-    const double d0 = std::max(arc.a.d, 0.0), d1 = std::max(arc.b.d, 0.0);
-    const double q0 = d0 * d0, q1 = d1 * d1, dq = q1 - q0;
-    const double chord2 =
-        std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - (L2 > 0 ? 0.25 * dq * dq / L2 : 0.0);
-    const double bound = std::sqrt(std::max(0.0, chord2)) - sag - margin;
+    const double bound = chord_bound(arc.a.d, arc.b.d, L2) - sag - margin;
     if (bound >= need) {
       least = std::min(least, bound - tube);
       continue;

@@ -17,6 +17,8 @@
 // cross far from the other patch; the patches' bounding tori (patch_disk) being
 // disjoint separates them too.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "fast/patch.h"
@@ -133,6 +135,20 @@ bool patches_at_least(const Patch& P, const Patch& Q, double cut, double margin,
 // query's witness), where the cutting starts.
 bool patch_spine_at_least(const Patch& W, const Patch& T, double cut, double margin, int budget, double* lower,
                           int* evals = nullptr, const Vec3* hint = nullptr);
+
+// The chord lemma of the spine proofs: where the distances from some set of
+// two points L apart (L2 = L^2) are d0 and d1, the set avoids both open
+// balls, so the segment between the points is at least the returned value
+// from it (the rim of the balls' meeting; the nearer ball's radius where one
+// ball covers the other's centre). Negative distances count as 0. (Inline:
+// the spine proofs' inner loop.)
+inline double chord_bound(double d0, double d1, double L2) {
+  d0 = std::max(d0, 0.0), d1 = std::max(d1, 0.0);
+  const double q0 = d0 * d0, q1 = d1 * d1, dq = q1 - q0;
+  const double chord2 =
+      std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - (L2 > 0 ? 0.25 * dq * dq / L2 : 0.0);
+  return std::sqrt(std::max(0.0, chord2));
+}
 
 // The same proof for any set S that lies within `tube` of circle `spine` at
 // its own azimuth (the spine's normal is its axis; a part of a solid about

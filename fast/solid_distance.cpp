@@ -463,12 +463,7 @@ struct Solid {
   // capsule (closer than its disk's for a long thin part; closest_fit: M
   // instructions for the motion probe's 600 queries at eps 1e-7 142.15 ->
   // 140.83, the others within 0.2 %).
-  static double capsule_lb(const Part& p, const Vec2& q) {
-    const Vec2 d = p.seg_b - p.seg_a;
-    const double l2 = d.squaredNorm();
-    const double t = l2 > 0 ? std::clamp((q - p.seg_a).dot(d) / l2, 0.0, 1.0) : 0.0;
-    return (q - (p.seg_a + t * d)).norm() - p.cap_r;
-  }
+  static double capsule_lb(const Part& p, const Vec2& q) { return point_segment_distance(q, p.seg_a, p.seg_b) - p.cap_r; }
   // The distance from meridian point q to fit f's arcs.
   static double fit_distance(const BiarcFit& f, const Vec2& q) {
     double d = f.arc[0].distance(q);
@@ -855,10 +850,8 @@ double pair_bound(const Solid& A, const Part& pa, const Solid& B, const Part& pb
 // A lower bound on the least of dist over the segment p0 p1, where dist is a
 // point's distance from a set (1-Lipschitz), proven at least `need`, or -inf
 // when a point of the segment is closer than that or the proof takes more
-// than `budget` evaluations. Between two points at distances d0 and d1, L
-// apart, the set avoids both open balls, so the segment between them is at
-// least sqrt(chord2) from it (the rim of the balls' meeting; the nearer
-// ball's radius where one ball covers the other's centre). p0 == p1: one
+// than `budget` evaluations: the segment cut in halves until the chord lemma
+// (chord_bound, fast/patch_distance.h) clears each piece. p0 == p1: one
 // evaluation.
 template <class Dist>
 double segment_at_least(const Vec3& p0, const Vec3& p1, double need, int budget, Dist dist) {
@@ -878,10 +871,7 @@ double segment_at_least(const Vec3& p0, const Vec3& p1, double need, int budget,
   double least = kInf;
   while (n > 0) {
     const auto [u, v] = open[--n];
-    const double d0 = std::max(u.d, 0.0), d1 = std::max(v.d, 0.0);
-    const double L2 = (v.y - u.y).squaredNorm(), q0 = d0 * d0, q1 = d1 * d1, dq = q1 - q0;
-    const double chord2 = std::abs(dq) >= L2 ? std::min(q0, q1) : 0.5 * (q0 + q1) - 0.25 * L2 - 0.25 * dq * dq / L2;
-    if (const double bound = std::sqrt(std::max(0.0, chord2)); bound >= need) {
+    if (const double bound = chord_bound(u.d, v.d, (v.y - u.y).squaredNorm()); bound >= need) {
       least = std::min(least, bound);
       continue;
     }
@@ -1087,7 +1077,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
   // The rounds project onto the fits' patches; only the last pair is mapped
   // to the input curves (true_point, ten times a patch projection's cost).
   bool have_witness = false;
-  const bool fine_trees = coarse_witness(A) > 0 && coarse_witness(B) > 0;
+  const double coarse_a = coarse_witness(A), coarse_b = coarse_witness(B);
+  const bool fine_trees = coarse_a > 0 && coarse_b > 0;
   auto first_witness = [&](const Vec3& start) {
     have_witness = true;
     Vec3 y = start, x = y;
@@ -1106,13 +1097,12 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     // query): three plain rounds 182.0 / 94.7, eight 178.7 / 88.8, these
     // 168.8 / 84.4 (pushes of 0.5 to 0.85 and 8 to 14 rounds: 169.5-172.4;
     // a push of 2 overshoots: 198.5).
-    const double ca = coarse_witness(A), cb = coarse_witness(B);
     Vec3 ys = y;
     for (int i = 0; i < 8; ++i) {
       const Vec3 x0 = x, y0 = y;
-      fx = A.nearest_fit(ys, ca);
+      fx = A.nearest_fit(ys, coarse_a);
       px = A.nearest_patch(fx, ys, &x);
-      fy = B.nearest_fit(x, cb);
+      fy = B.nearest_fit(x, coarse_b);
       py = B.nearest_patch(fy, x, &y);
       if (i > 0 && (x - x0).norm() + (y - y0).norm() <= 1e-2 * (x - y).norm()) break;
       ys = i > 0 ? Vec3(y + 0.7 * (y - y0)) : y;
@@ -1190,8 +1180,8 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         fx = nfx, fy = nfy, px = npx, py = npy, x = xs, y = ys2;
       }
     };
-    walk(ca, cb);
-    if (ca > 0 || cb > 0) {  // the leaves nearest the coarse pair, a descent on them and the walk
+    walk(coarse_a, coarse_b);
+    if (coarse_a > 0 || coarse_b > 0) {  // the leaves nearest the coarse pair, a descent on them and the walk
       Vec3 x2 = x, y2 = y;
       fx = A.closest_fit(x), px = A.nearest_patch(fx, x, &x2);
       fy = B.closest_fit(y), py = B.nearest_patch(fy, y, &y2);
@@ -1261,6 +1251,15 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     }
     return least - fit.eps - round;
   };
+  // Whether patches P of A and Q of B are at least c apart by the spine
+  // bounds, either way (patch_spine_at_least; *bound then bounds it).
+  auto spines_at_least = [&](const Patch& P, const Patch& Q, double c, double* bound) {
+    int evals = 0, more = 0;
+    const bool ok = patch_spine_at_least(P, Q, c, round, kSpineBudget, bound, &evals, &res.point_b) ||
+                    patch_spine_at_least(Q, P, c, round, kSpineBudget, bound, &more, &res.point_a);
+    st.spine_evals += evals + more;
+    return ok;
+  };
   // A lower bound on the distance between parts qa of A and qb of B from
   // either's fit when its arcs are axis zones (Solid::axis_zones): a point
   // of a zone is within its radius of the zone's piece of axis, so at least
@@ -1320,6 +1319,9 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
     const BiarcFit fa = A.fit(ha), fb = B.fit(hb);
     if (!(fa.eps + fb.eps <= kNodeFits * (ha.disk_r + hb.disk_r))) return -kInf;
     const double need = cut() + fa.eps + fb.eps + round;
+    // (Patches made as the loop reaches them, not by Solid::fit_patches: that
+    // one-fit cache holds the leaf a run of pairs shares, fit_spine_bound's,
+    // and the witness's; and most calls end at their first arc pair.)
     double least = kInf;
     for (int i = 0; i < fa.arcs; ++i) {
       if (fa.arc[i].length <= 0) continue;
@@ -1328,11 +1330,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         if (fb.arc[j].length <= 0) continue;
         const Patch Q = make_patch(fb.arc[j], pb.R, pb.t);
         double lower = witness_hull().patches(P, Q);
-        int evals = 0, more = 0;
-        if (!(lower >= need) && !patch_spine_at_least(P, Q, need, round, kSpineBudget, &lower, &evals, &res.point_b) &&
-            !patch_spine_at_least(Q, P, need, round, kSpineBudget, &lower, &more, &res.point_a))
-          return -kInf;
-        st.spine_evals += evals + more;
+        if (!(lower >= need) && !spines_at_least(P, Q, need, &lower)) return -kInf;
         least = std::min(least, lower);
       }
     }
@@ -1703,15 +1701,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
         // the other's major circle (patch_spine_at_least), a one-dimensional
         // proof of about a dozen closed-form evaluations. Neighbours of the
         // closest pair, whose full tori meet near it, mostly end here.
-        // spine_proof(c, &bound): both ways at cut c.
-        auto spine_proof = [&](double c, double* bound) {
-          int evals = 0, more = 0;
-          const bool ok = patch_spine_at_least(P, Q, c, round, kSpineBudget, bound, &evals, &res.point_b) ||
-                          patch_spine_at_least(Q, P, c, round, kSpineBudget, bound, &more, &res.point_a);
-          st.spine_evals += evals + more;
-          return ok;
-        };
-        if (double spine = 0.0; spine_proof(kernel_cut, &spine)) {
+        if (double spine = 0.0; spines_at_least(P, Q, kernel_cut, &spine)) {
           ++st.spine_pairs;
           settle(std::max(quick.lower, spine));
           continue;
@@ -1776,7 +1766,7 @@ SolidDistanceResult query(const PosedSolid& pa, const PosedSolid& pb, const Dist
               return Descended::proven;
             }
             *by_spine = true;
-            return spine_proof(*cut2, bound) ? Descended::proven : Descended::above;
+            return spines_at_least(P, Q, *cut2, bound) ? Descended::proven : Descended::above;
           }
           return cut() > 0 && d > fa.eps + fb.eps + round ? Descended::open : Descended::within;
         };
